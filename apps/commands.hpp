@@ -1,0 +1,14 @@
+#pragma once
+/// Subcommands of the `tcasim` command line. Each add_* function registers one
+/// subcommand on the application; its callback does the work and throws on error
+/// (main turns every exception into a message and a non-zero exit code).
+#include <CLI/CLI.hpp>
+
+namespace tcasim::app {
+
+/// `tcasim tca FILE.json [--tca ID] (--tension-N F | --load-g M) --temperatures-degC A:B:S`
+void add_tca_command(CLI::App& app);
+/// `tcasim fit ...`: calibration of TCA material parameters to measured curves.
+void add_fit_command(CLI::App& app);
+
+}  // namespace tcasim::app

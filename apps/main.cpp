@@ -1,0 +1,31 @@
+// tcasim: command-line front end. See `tcasim --help`.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "apps/commands.hpp"
+#include "common/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"tcasim: kinetostatics of soft robots actuated by twisted-and-coiled actuators"};
+  app.require_subcommand(1);
+  tcasim::app::add_tca_command(app);
+  tcasim::app::add_fit_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const tcasim::InputError& e) {
+    fmt::print(stderr, "tcasim: input error: {}\n", e.what());
+    return 2;
+  } catch (const tcasim::DomainError& e) {
+    fmt::print(stderr, "tcasim: outside the model's domain: {}\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "tcasim: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,319 @@
+#include "common/ode.hpp"
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <fmt/format.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <type_traits>
+#include <utility>
+
+#include "common/error.hpp"
+
+// CVODE method choice. The rod IVPs of the shooting solver are smooth and non-stiff
+// and are solved at tight tolerances (rtol ~ 1e-10). Adams-Moulton reaches order 12
+// there (BDF stops at 5), so it takes far fewer steps per digit, and a fixed-point
+// corrector needs no Jacobian (a dense difference-quotient Jacobian costs n extra RHS
+// calls per update). BDF is also not A-stable beyond order 2 and damps the
+// oscillatory modes of the rod equations. BDF + dense Newton stays available as
+// CvodeScheme::kBdfNewtonDense for stiff problems.
+
+namespace tcasim::ode {
+namespace {
+
+// ---- RAII owners of the SUNDIALS objects ----------------------------------------
+struct ContextDeleter {
+  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver ls) const { SUNLinSolFree(ls); }
+};
+struct NonlinearSolverDeleter {
+  void operator()(SUNNonlinearSolver nls) const { SUNNonlinSolFree(nls); }
+};
+struct CvodeDeleter {
+  void operator()(void* mem) const { CVodeFree(&mem); }
+};
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using NonlinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinearSolverDeleter>;
+using CvodeMemPtr = std::unique_ptr<void, CvodeDeleter>;
+
+/// CVODE's name of a return flag (the string is malloc'ed by SUNDIALS).
+std::string cvode_flag_name(int flag) {
+  char* name = CVodeGetReturnFlagName(flag);
+  std::string out = name != nullptr ? name : fmt::format("flag {}", flag);
+  std::free(name);
+  return out;
+}
+
+std::string cvode_ls_flag_name(int flag) {
+  char* name = CVodeGetLinReturnFlagName(flag);
+  std::string out = name != nullptr ? name : fmt::format("flag {}", flag);
+  std::free(name);
+  return out;
+}
+
+/// Converts a failed CVODE setup call into ExternalError.
+void check_cvode(int flag, const char* call) {
+  if (flag < 0) throw ExternalError(fmt::format("SUNDIALS {} failed: {}", call, cvode_flag_name(flag)));
+}
+
+template <class T>
+T check_created(T object, const char* call) {
+  if (object == nullptr) throw ExternalError(fmt::format("SUNDIALS {} returned NULL", call));
+  return object;
+}
+
+void validate(int dimension, const IntegratorOptions& o) {
+  require(dimension >= 1, "dimension", dimension, "must be >= 1");
+  require(o.output_intervals >= 0, "output_intervals", o.output_intervals, "must be >= 0");
+  if (o.method == Method::kRk4) {
+    require(o.steps >= 1, "steps", o.steps, "must be >= 1");
+    if (o.output_intervals != 0 && o.steps % o.output_intervals != 0)
+      throw InputError("output_intervals", std::to_string(o.output_intervals),
+                       fmt::format("must divide steps = {} (RK4 observes at step nodes)", o.steps));
+  } else {
+    require(o.relative_tolerance > 0.0, "relative_tolerance", o.relative_tolerance, "must be > 0");
+    require(o.absolute_tolerance > 0.0, "absolute_tolerance", o.absolute_tolerance, "must be > 0");
+    require(o.max_internal_steps >= 1, "max_internal_steps", static_cast<double>(o.max_internal_steps),
+            "must be >= 1");
+  }
+}
+
+/// The k-th of M output points in [s0, s1]; the last one is exactly s1.
+double output_point(double s0, double s1, int k, int M) {
+  return k == M ? s1 : s0 + (s1 - s0) * (static_cast<double>(k) / M);
+}
+
+}  // namespace
+
+struct Integrator::Impl {
+  Impl(int n, const IntegratorOptions& o)
+      : options(o), dimension(n), k1(n), k2(n), k3(n), k4(n), y_stage(n), y_next(n) {
+    if (options.method == Method::kCvode) setup_cvode();
+  }
+
+  IntegratorOptions options;
+  int dimension;
+  // RK4 work vectors (also the CVODE RHS copy buffers y_stage -> k1).
+  Eigen::VectorXd k1, k2, k3, k4, y_stage, y_next;
+
+  // CVODE objects, declared so that they are destroyed in reverse dependency order
+  // (CVODE memory first, the context last).
+  ContextPtr context;
+  VectorPtr y_nv;
+  MatrixPtr matrix;
+  LinearSolverPtr linear_solver;
+  NonlinearSolverPtr nonlinear_solver;
+  CvodeMemPtr cvode;
+
+  // State of the current integrate() call, read by the CVODE callbacks.
+  const RhsFunction* rhs = nullptr;
+  long rhs_count = 0;
+  std::exception_ptr rhs_exception;
+  std::string last_cvode_message;
+
+  void setup_cvode();
+  static int cvode_rhs(realtype s, N_Vector y, N_Vector ydot, void* user_data);
+  static void cvode_error_handler(int code, const char* module, const char* function, char* msg,
+                                  void* user_data);
+
+  IntegrationSummary integrate_rk4(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
+                                   const Observer& observer);
+  IntegrationSummary integrate_cvode(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
+                                     const Observer& observer);
+};
+
+void Integrator::Impl::setup_cvode() {
+  SUNContext ctx = nullptr;
+  const int ctx_flag = SUNContext_Create(nullptr, &ctx);
+  if (ctx_flag != 0 || ctx == nullptr)
+    throw ExternalError(fmt::format("SUNDIALS SUNContext_Create failed with flag {}", ctx_flag));
+  context.reset(ctx);
+  y_nv.reset(check_created(N_VNew_Serial(dimension, ctx), "N_VNew_Serial"));
+  N_VConst(0.0, y_nv.get());
+
+  const bool adams = options.cvode_scheme == CvodeScheme::kAdamsFixedPoint;
+  cvode.reset(check_created(CVodeCreate(adams ? CV_ADAMS : CV_BDF, ctx), "CVodeCreate"));
+  void* mem = cvode.get();
+  // Placeholder initial condition; every integrate() calls CVodeReInit.
+  check_cvode(CVodeInit(mem, &Impl::cvode_rhs, 0.0, y_nv.get()), "CVodeInit");
+  check_cvode(CVodeSetErrHandlerFn(mem, &Impl::cvode_error_handler, this), "CVodeSetErrHandlerFn");
+  check_cvode(CVodeSetUserData(mem, this), "CVodeSetUserData");
+  check_cvode(CVodeSStolerances(mem, options.relative_tolerance, options.absolute_tolerance),
+              "CVodeSStolerances");
+  check_cvode(CVodeSetMaxNumSteps(mem, options.max_internal_steps), "CVodeSetMaxNumSteps");
+  if (adams) {
+    // Plain fixed-point iteration (no Anderson acceleration).
+    nonlinear_solver.reset(
+        check_created(SUNNonlinSol_FixedPoint(y_nv.get(), 0, ctx), "SUNNonlinSol_FixedPoint"));
+    check_cvode(CVodeSetNonlinearSolver(mem, nonlinear_solver.get()), "CVodeSetNonlinearSolver");
+  } else {
+    matrix.reset(check_created(SUNDenseMatrix(dimension, dimension, ctx), "SUNDenseMatrix"));
+    linear_solver.reset(
+        check_created(SUNLinSol_Dense(y_nv.get(), matrix.get(), ctx), "SUNLinSol_Dense"));
+    const int flag = CVodeSetLinearSolver(mem, linear_solver.get(), matrix.get());
+    if (flag != CVLS_SUCCESS)
+      throw ExternalError(
+          fmt::format("SUNDIALS CVodeSetLinearSolver failed: {}", cvode_ls_flag_name(flag)));
+  }
+}
+
+int Integrator::Impl::cvode_rhs(realtype s, N_Vector y, N_Vector ydot, void* user_data) {
+  auto* self = static_cast<Impl*>(user_data);
+  // No exception may cross the C library: keep it and stop CVODE (unrecoverable).
+  try {
+    const Eigen::Map<const Eigen::VectorXd> y_in(N_VGetArrayPointer(y), self->dimension);
+    self->y_stage = y_in;
+    ++self->rhs_count;
+    (*self->rhs)(s, self->y_stage, self->k1);
+    // A non-finite slope is a recoverable failure: CVODE retries with a smaller step.
+    if (!self->k1.allFinite()) return 1;
+    Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(ydot), self->dimension) = self->k1;
+    return 0;
+  } catch (...) {
+    self->rhs_exception = std::current_exception();
+    return -1;
+  }
+}
+
+void Integrator::Impl::cvode_error_handler(int code, const char* module, const char* function,
+                                           char* msg, void* user_data) {
+  // Keep the text for the summary instead of printing it to stderr.
+  auto* self = static_cast<Impl*>(user_data);
+  self->last_cvode_message = fmt::format("{} {} ({}): {}", module != nullptr ? module : "",
+                                         function != nullptr ? function : "",
+                                         code == CV_WARNING ? "warning" : cvode_flag_name(code),
+                                         msg != nullptr ? msg : "");
+}
+
+IntegrationSummary Integrator::Impl::integrate_rk4(const RhsFunction& f, double s0, double s1,
+                                                   Eigen::VectorXd& y, const Observer& observer) {
+  IntegrationSummary summary;
+  const int n_steps = options.steps;
+  const int observe_every = options.output_intervals == 0 ? 1 : n_steps / options.output_intervals;
+  const double h = (s1 - s0) / n_steps;
+  summary.s_final = s0;
+  if (observer) observer(s0, y);
+  for (int i = 0; i < n_steps; ++i) {
+    const double s = s0 + i * h;
+    const double s_next = i + 1 == n_steps ? s1 : s0 + (i + 1) * h;
+    // Classical RK4: y+ = y + h/6 (k1 + 2 k2 + 2 k3 + k4).
+    f(s, y, k1);
+    y_stage = y + (0.5 * h) * k1;
+    f(s + 0.5 * h, y_stage, k2);
+    y_stage = y + (0.5 * h) * k2;
+    f(s + 0.5 * h, y_stage, k3);
+    y_stage = y + h * k3;
+    f(s_next, y_stage, k4);
+    summary.rhs_evaluations += 4;
+    y_next = y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    if (!y_next.allFinite()) {
+      summary.status = IntegrationSummary::Status::kFailed;
+      summary.message = fmt::format(
+          "RK4: the state became non-finite in step {} of {} (s = {} -> {}); y is left at s = {}",
+          i + 1, n_steps, s, s_next, s);
+      return summary;
+    }
+    y = y_next;
+    summary.steps = i + 1;
+    summary.s_final = s_next;
+    if (observer && (i + 1) % observe_every == 0) observer(s_next, y);
+  }
+  return summary;
+}
+
+IntegrationSummary Integrator::Impl::integrate_cvode(const RhsFunction& f, double s0, double s1,
+                                                     Eigen::VectorXd& y, const Observer& observer) {
+  IntegrationSummary summary;
+  void* mem = cvode.get();
+  rhs = &f;
+  rhs_count = 0;
+  rhs_exception = nullptr;
+  last_cvode_message.clear();
+  Eigen::Map<Eigen::VectorXd> y_cv(N_VGetArrayPointer(y_nv.get()), dimension);
+  y_cv = y;
+  check_cvode(CVodeReInit(mem, s0, y_nv.get()), "CVodeReInit");
+  // Never step past s1: the RHS may be undefined beyond the end of the interval.
+  check_cvode(CVodeSetStopTime(mem, s1), "CVodeSetStopTime");
+
+  summary.s_final = s0;
+  if (observer) observer(s0, y);
+  const int M = options.output_intervals == 0 ? 1 : options.output_intervals;
+  for (int k = 1; k <= M; ++k) {
+    const double target = output_point(s0, s1, k, M);
+    realtype reached = s0;
+    const int flag = CVode(mem, target, y_nv.get(), &reached, CV_NORMAL);
+    summary.rhs_evaluations = rhs_count;
+    long n_steps = 0;
+    check_cvode(CVodeGetNumSteps(mem, &n_steps), "CVodeGetNumSteps");
+    summary.steps = n_steps;
+    if (rhs_exception) {
+      rhs = nullptr;
+      std::rethrow_exception(std::exchange(rhs_exception, nullptr));
+    }
+    const bool finite = y_cv.allFinite();
+    if (finite) {
+      y = y_cv;
+      summary.s_final = reached;
+    }
+    if (flag < 0 || !finite) {
+      summary.status = IntegrationSummary::Status::kFailed;
+      summary.message =
+          flag < 0 ? fmt::format("CVODE returned {} at s = {} (target s = {}): {}",
+                                 cvode_flag_name(flag), reached, target, last_cvode_message)
+                   : fmt::format("CVODE: the state became non-finite at s = {}", reached);
+      break;
+    }
+    if (observer && (options.output_intervals > 0 || k == M)) observer(target, y);
+  }
+  rhs = nullptr;
+  return summary;
+}
+
+Integrator::Integrator(int dimension, const IntegratorOptions& options) {
+  validate(dimension, options);
+  impl_ = std::make_unique<Impl>(dimension, options);
+}
+
+Integrator::~Integrator() = default;
+Integrator::Integrator(Integrator&&) noexcept = default;
+Integrator& Integrator::operator=(Integrator&&) noexcept = default;
+
+const IntegratorOptions& Integrator::options() const { return impl_->options; }
+int Integrator::dimension() const { return impl_->dimension; }
+
+IntegrationSummary Integrator::integrate(const RhsFunction& f, double s0, double s1,
+                                         Eigen::VectorXd& y, const Observer& observer) {
+  // Messages are only built on failure: integrate() is called thousands of times.
+  if (!f) throw InputError("f", "empty", "must be a callable right-hand side");
+  if (!std::isfinite(s0)) throw InputError("s0", format_value(s0), "must be finite");
+  if (!(std::isfinite(s1) && s1 > s0))
+    throw InputError("s1", format_value(s1), fmt::format("must be finite and > s0 = {}", s0));
+  if (y.size() != impl_->dimension)
+    throw InputError("y.size()", std::to_string(y.size()),
+                     fmt::format("must equal the integrator dimension {}", impl_->dimension));
+  if (!y.allFinite()) throw InputError("y", "(non-finite entries)", "must be finite at s0");
+  return impl_->options.method == Method::kRk4 ? impl_->integrate_rk4(f, s0, s1, y, observer)
+                                               : impl_->integrate_cvode(f, s0, s1, y, observer);
+}
+
+}  // namespace tcasim::ode

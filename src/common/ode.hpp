@@ -1,0 +1,93 @@
+#pragma once
+/// Initial-value integration of dy/ds = f(s, y) behind one interface: fixed-step
+/// classical RK4 ([Pawlowski2019] uses it) or SUNDIALS CVODE (adaptive Adams or BDF
+/// with tolerance control). The SUNDIALS C API stays inside ode.cpp.
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace tcasim::ode {
+
+/// dy/ds = f(s, y); writes into dyds (already sized). Exceptions thrown by f
+/// propagate out of Integrator::integrate (also through CVODE).
+using RhsFunction = std::function<void(double s, const Eigen::VectorXd& y, Eigen::VectorXd& dyds)>;
+/// Called at each output point (see IntegratorOptions).
+using Observer = std::function<void(double s, const Eigen::VectorXd& y)>;
+
+enum class Method {
+  kRk4,    ///< classical fourth-order Runge-Kutta, `steps` equal steps
+  kCvode,  ///< SUNDIALS CVODE (scheme chosen by IntegratorOptions::cvode_scheme)
+};
+
+/// CVODE's linear multistep family and nonlinear iteration.
+enum class CvodeScheme {
+  /// Adams-Moulton (orders 1..12) with fixed-point iteration: the default, most
+  /// accurate per RHS evaluation on smooth non-stiff problems at tight tolerances.
+  kAdamsFixedPoint,
+  /// BDF (orders 1..5) with Newton iteration and a dense difference-quotient
+  /// Jacobian: for stiff problems only.
+  kBdfNewtonDense,
+};
+
+/// Options, validated by Integrator's constructor (InputError naming the field).
+struct IntegratorOptions {
+  Method method = Method::kRk4;
+  int steps = 100;                    ///< kRk4: number of equal steps (>= 1)
+  double relative_tolerance = 1e-10;  ///< kCvode (> 0)
+  double absolute_tolerance = 1e-14;  ///< kCvode (> 0), in the units of y
+  long max_internal_steps = 100000;   ///< kCvode: max steps between two output points (>= 1)
+  CvodeScheme cvode_scheme = CvodeScheme::kAdamsFixedPoint;  ///< kCvode
+  /// Output points for the observer: s0 + k (s1 - s0)/output_intervals, k = 0..M (>= 0).
+  /// kRk4 observes at step nodes only, so output_intervals must divide `steps`; with
+  /// output_intervals = 0 the observer sees every step node. kCvode with
+  /// output_intervals = 0 observes s0 and s1 only (values between come from CVODE's
+  /// interpolant, with the integration's accuracy).
+  int output_intervals = 0;
+};
+
+struct IntegrationSummary {
+  enum class Status {
+    kSuccess,  ///< reached s1 with a finite y
+    kFailed,   ///< the integrator stopped before s1 (message says why), or y became non-finite
+  };
+  Status status = Status::kSuccess;
+  long rhs_evaluations = 0;  ///< all calls of f (CVODE: including difference-quotient Jacobians)
+  long steps = 0;            ///< steps taken (kRk4: equal steps; kCvode: internal steps)
+  /// s of the returned y: s1 on success; on failure the last s with a finite state.
+  double s_final = 0.0;
+  std::string message;  ///< empty on success
+};
+
+/// Reusable integrator for one state dimension (buffers and CVODE memory are kept
+/// between calls, so repeated shooting integrations do not allocate for kRk4 and
+/// re-initialize CVODE with CVodeReInit).
+class Integrator {
+ public:
+  /// Throws InputError on bad options or dimension < 1, ExternalError if SUNDIALS
+  /// setup fails.
+  Integrator(int dimension, const IntegratorOptions& options);
+  ~Integrator();
+  Integrator(Integrator&&) noexcept;
+  Integrator& operator=(Integrator&&) noexcept;
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
+
+  /// The options given at construction.
+  const IntegratorOptions& options() const;
+  /// Length of the state vector.
+  int dimension() const;
+
+  /// Integrates y from s0 to s1 > s0 in place. Throws InputError on bad arguments
+  /// (s1 <= s0, non-finite s, y.size() != dimension, non-finite y) and ExternalError
+  /// on a SUNDIALS error outside the integration proper; a failed integration is a
+  /// status (then y holds the last finite state, at summary.s_final).
+  IntegrationSummary integrate(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
+                               const Observer& observer = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tcasim::ode

@@ -1,0 +1,117 @@
+#pragma once
+/// The shared description of a rod robot with embedded string actuators, read from a
+/// scenario file (docs/scenario-format.md). Immutable once built; both solvers read it.
+///
+/// Frames: world W (fixed; the base clamp is at `base_position_W` with body frame
+/// `R_WB0`), body B (e1, e2 span the section, e3 along the undeformed centerline).
+/// Units: SI throughout; temperatures in kelvin.
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tca/tca.hpp"
+
+namespace tcasim::rod {
+
+/// Cross-section properties of the body.
+struct Section {
+  enum class Shape { kCircle, kRectangle, kCustom };
+  Shape shape = Shape::kCircle;
+  double width_m = 0.0;   ///< rectangle: along body x; circle: diameter
+  double height_m = 0.0;  ///< rectangle: along body y
+  double area_m2 = 0.0;   ///< A
+  double I_x_m4 = 0.0;    ///< second moment about body x (int y^2 dA)
+  double I_y_m4 = 0.0;    ///< second moment about body y (int x^2 dA)
+  double J_m4 = 0.0;      ///< torsion constant (polar by default, or Saint-Venant)
+  bool saint_venant_torsion = false;
+  /// Half extent of the section along the direction (dir_x, dir_y) in the section plane
+  /// (any non-zero length) [m]: the distance from the centerline to the edge, used by the
+  /// radius metric and the actuator-offset check. Circle: D/2; rectangle: distance to the
+  /// first edge the ray meets. Throws DomainError for a custom section (it has no outline)
+  /// and for a zero or non-finite direction.
+  double half_extent_m(double dir_x, double dir_y) const;
+};
+
+/// Linear elastic, isotropic body material.
+struct BodyMaterial {
+  double youngs_modulus_Pa = 0.0;  ///< E
+  double poisson_ratio = 0.0;      ///< nu
+  double shear_modulus_Pa = 0.0;   ///< G = E / (2 (1 + nu))
+  double density_kg_m3 = 0.0;      ///< psi (0 allowed: massless)
+};
+
+/// Path of a string in the body frame: r(s) = (x, y, 0) in the section plane.
+struct Routing {
+  enum class Type { kStraight, kHelix };
+  Type type = Type::kStraight;
+  Eigen::Vector2d offset_m = Eigen::Vector2d::Zero();  ///< straight: constant offset
+  double radius_m = 0.0;      ///< helix radius
+  double phase_rad = 0.0;     ///< helix phase at s = 0
+  double turns_per_m = 0.0;   ///< helix turns per metre of arc length s
+
+  /// r_B(s), r_B'(s), r_B''(s) (derivatives with respect to the reference arc length s).
+  Eigen::Vector3d r(double s_m) const;
+  Eigen::Vector3d dr(double s_m) const;
+  Eigen::Vector3d ddr(double s_m) const;
+};
+
+/// How a string's tension is set.
+struct Drive {
+  enum class Type { kTension, kTca };
+  Type type = Type::kTension;
+  double tension_N = 0.0;                ///< kTension: prescribed tension (positive = tensile)
+  std::string tca_id;                    ///< kTca: key into RodModel::tcas
+  std::shared_ptr<const tca::Tca> tca;   ///< kTca: the resolved TCA
+  std::vector<tca::Segment> segments;    ///< kTca: one segment {1, T} for a uniform temperature
+  bool segmented = false;                ///< true if the file gave `segments`
+};
+
+/// One actuator: `count` identical parallel strings along one routing.
+struct Actuator {
+  std::string name;
+  Routing routing;
+  int count = 1;
+  Drive drive;
+  /// Rest length of one string [m]: the TCA's coiled length for a TCA drive, the
+  /// reference path length int_0^L ||e3 + r'|| ds for a tension drive.
+  double rest_length_m = 0.0;
+  /// L_i of Eq. (18): rest_length_m / body length.
+  double length_ratio = 1.0;
+};
+
+/// Tip held at a world point: fully (pinned), or only along a contact normal.
+struct TipConstraint {
+  Eigen::Vector3d position_W_m = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Vector3d> normal_W;  ///< unit; absent = pinned
+};
+
+/// Everything a solver needs to know about one rod robot.
+struct RodModel {
+  std::string schema;
+  std::string name;
+  std::string comment;
+  double length_m = 0.0;  ///< L, reference centerline length
+  Section section;
+  BodyMaterial material;
+  Eigen::Vector3d reference_curvature_B_1_m = Eigen::Vector3d::Zero();  ///< omega*
+  Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d base_position_W_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R_WB0 = Eigen::Matrix3d::Identity();
+  std::optional<TipConstraint> tip_constraint;
+  std::map<std::string, std::shared_ptr<const tca::Tca>> tcas;
+  std::vector<Actuator> actuators;
+
+  /// K_nu = diag(G A, G A, E A) [N].
+  Eigen::Vector3d shear_extension_stiffness() const;
+  /// K_omega = diag(E I_x, E I_y, G J) [N m^2].
+  Eigen::Vector3d bending_torsion_stiffness() const;
+  /// Weight per unit length psi A g in the world frame [N/m].
+  Eigen::Vector3d weight_per_length_W_N_m() const;
+};
+
+}  // namespace tcasim::rod

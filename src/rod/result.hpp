@@ -1,0 +1,67 @@
+#pragma once
+/// The result file `tcasim.result/1` (docs/scenario-format.md), written by both solvers.
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rod/model.hpp"
+
+namespace tcasim::rod {
+
+/// State of one actuator in a solution (per string: a `count` of 2 has this tension in each).
+struct ActuatorResult {
+  std::string name;
+  double tension_N = 0.0;     ///< tension of one string (positive = tensile)
+  double elongation_m = 0.0;  ///< current length minus rest length of one string
+};
+
+/// One solve's outcome, as written to a result file.
+struct Result {
+  std::string scenario;  ///< RodModel::name
+  std::string method;    ///< "cosserat" or "fe"
+  /// Discretization as key/value pairs, e.g. {{"steps", 100}} or {{"elements", 32}, {"order", 2}}.
+  std::vector<std::pair<std::string, double>> discretization;
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+  double wall_time_s = 0.0;
+  std::string message;  ///< why it did not converge (empty when converged)
+
+  Eigen::Vector3d tip_position_W_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d tip_R_WB = Eigen::Matrix3d::Identity();
+  std::vector<ActuatorResult> actuators;
+  std::optional<double> bending_radius_m;  ///< three-point inner-edge radius; none when straight
+  std::optional<Eigen::Vector3d> tip_reaction_force_W_N;  ///< with a tip constraint
+
+  /// Centerline samples: arc length, position and body frame at each.
+  std::vector<double> centerline_s_m;
+  std::vector<Eigen::Vector3d> centerline_p_W_m;
+  std::vector<Eigen::Matrix3d> centerline_R_WB;
+};
+
+/// Serializes a result. Non-finite numbers are never written: a result holding one is
+/// turned into converged = false with a message naming the field.
+nlohmann::json to_json(const Result& result);
+
+/// Writes to_json(result) to `path`, or to stdout when path is empty or "-".
+void write_result(const Result& result, const std::string& path);
+
+/// The paper's bending-radius metric (Fig. 6): the circle through three points on the
+/// inner edge of the body (base, middle, tip) on the side toward the bending direction,
+/// at the section's half extent from the centerline. `s`, `p` and `R` sample the
+/// centerline in increasing s (at least 2 samples, first at the base, last at the tip).
+/// Bending direction u_B: the base-to-tip chord in the base body frame, projected on the
+/// section plane (points to the centre of curvature of any planar arc, precurved or not).
+/// Edge points: p_k + R_k h(u) (u_x, u_y, 0). The middle pose at (s_0 + s_end)/2 is a
+/// sample if one lies there, else the constant-strain (SE(3) geodesic) interpolation of
+/// its two neighbours, exact for arcs and helices. Returns none when the lateral tip
+/// offset is below 1e-12 L or the points are collinear (a straight rod), and for a custom
+/// section (no outline, so no inner edge).
+std::optional<double> three_point_inner_radius(const RodModel& model, const std::vector<double>& s_m,
+                                               const std::vector<Eigen::Vector3d>& p_W_m,
+                                               const std::vector<Eigen::Matrix3d>& R_WB);
+
+}  // namespace tcasim::rod

@@ -1,0 +1,194 @@
+#pragma once
+/// The physics-based TCA model of [Pawlowski2019] Section II, Eqs. (1)-(6), with the
+/// decisions of docs/conventions.md (corrected lengths, selectable f12 factor, current
+/// fiber diameter, chirality sign, closed coils).
+///
+/// Units: SI inside (m, N, Pa, K). Temperatures are absolute [K]; material laws
+/// are written in degC in their data files and converted when evaluated.
+/// Sign conventions: the tension F > 0 pulls the TCA longer; the elongation
+/// delta > 0 lengthens it (delta = 0 at the coiled length L).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tcasim::tca {
+
+/// Extension (heterochiral: twist and coil of opposite hand) or contraction (homochiral).
+enum class Kind { kExtension, kContraction };
+
+/// Factor in Eq. (4): `kPaper` prints 8; `kCastigliano` is the consistent 16.
+enum class F12Form { kPaper, kCastigliano };
+
+const char* to_string(Kind k);
+const char* to_string(F12Form f);
+
+/// p(T) = c0 + c1 T + c2 T^2 + ... with T in degC (a constant is a degree-0 polynomial).
+struct PolynomialDegC {
+  std::vector<double> coefficients;
+  /// Value at absolute temperature t_K.
+  double value(double t_K) const;
+  /// d p / d T [1/K] at absolute temperature t_K.
+  double derivative(double t_K) const;
+};
+
+/// Fiber diameter ratio d(T)/d0.
+struct DiameterLaw {
+  enum class Type { kLinearExpansion, kRatioPolynomial };
+  Type type = Type::kLinearExpansion;
+  /// Linear expansion coefficient rho [1/K]: d/d0 = 1 + rho (T - T_ref).
+  double linear_expansion_1_K = 0.0;
+  /// Ratio polynomial: d/d0 = p(T)/p(T_ref).
+  PolynomialDegC ratio_polynomial;
+};
+
+/// Material properties at one temperature with their temperature derivatives.
+struct MaterialState {
+  double youngs_modulus_Pa;      ///< E_T
+  double shear_modulus_Pa;       ///< G_T
+  double diameter_ratio;         ///< d(T)/d0
+  double dE_dT_Pa_K;             ///< dE_T/dT
+  double dG_dT_Pa_K;             ///< dG_T/dT
+  double dratio_dT_1_K;          ///< d(d/d0)/dT
+};
+
+/// Temperature-dependent properties of a twisted fiber (data, with its source named).
+struct Material {
+  std::string name;                 ///< id (file stem for shipped materials)
+  std::string source;               ///< where the numbers come from
+  double reference_temperature_K = 298.15;  ///< T_ref, at which d = d0
+  PolynomialDegC youngs_modulus_Pa;         ///< E_T(T)
+  PolynomialDegC shear_modulus_Pa;          ///< G_T(T)
+  DiameterLaw diameter;
+  /// The Eq. (4) factor the moduli were identified with, if the source states one.
+  std::optional<F12Form> f12_form;
+  /// Temperature range over which the law is valid [K].
+  double min_temperature_K = 0.0;
+  double max_temperature_K = 1e9;
+
+  /// Evaluates the laws at t_K. Throws DomainError outside the valid range or where
+  /// a modulus or the diameter ratio is not positive.
+  MaterialState at(double t_K) const;
+};
+
+/// Measurable parameters of one TCA, as in [Pawlowski2019] Section II.
+struct Parameters {
+  Kind kind = Kind::kExtension;
+  double coiled_length_m = 0.0;   ///< L, the closed coiled length
+  double fiber_length_m = 0.0;    ///< l, the twisted fiber length (l > L)
+  double outer_diameter_m = 0.0;  ///< D
+  double twist_turns = 0.0;       ///< N, inserted twist turns
+  F12Form f12_form = F12Form::kCastigliano;
+};
+
+/// Fiber length from the coiled length and the initial pitch angle: l = L / sin(alpha0).
+double fiber_length_from_pitch(double coiled_length_m, double pitch_angle_rad);
+
+/// Coefficients of Eq. (2) at one pitch angle and temperature.
+struct Coefficients {
+  double f11_m_N;     ///< f11 [m/N], Eq. (3)
+  double f12_1_N;     ///< f12 [1/N], Eq. (4) with the chosen factor
+  double tau_Nm;      ///< tau [N m], Eq. (1)
+};
+
+/// Value and consistent tangents of the tension law F(delta, T).
+struct TensionState {
+  double tension_N;       ///< F
+  double dF_ddelta_N_m;   ///< dF/d delta
+  double dF_dT_N_K;       ///< dF/dT
+  double pitch_angle_rad; ///< alpha at this elongation, Eq. (5)
+  /// True for an extension TCA pushed below its closed length (delta < 0): the
+  /// free-coil law is then an extrapolation; physically the coils are in contact.
+  bool below_closed_length;
+};
+
+/// Result of the elongation law delta(F, T).
+struct ElongationState {
+  double elongation_m;     ///< delta
+  double pitch_angle_rad;  ///< alpha
+  bool coils_closed;       ///< extension TCA held at delta = 0 by coil contact
+};
+
+/// One TCA: the measurable parameters converted to model constants, and its material.
+class Tca {
+ public:
+  /// Validates the parameters (throws InputError naming the parameter) and converts:
+  /// alpha0 = asin(L/l), n = 2 cos(alpha0) l/(pi D), phi0 = 2 pi N, d0 = 2 D L/l.
+  Tca(const Parameters& parameters, Material material);
+
+  const Parameters& parameters() const { return p_; }
+  const Material& material() const { return material_; }
+  double initial_pitch_angle_rad() const { return alpha0_; }  ///< alpha0
+  double coil_count() const { return n_; }                    ///< n
+  double initial_twist_rad() const { return phi0_; }          ///< phi0
+  double initial_fiber_diameter_m() const { return d0_; }     ///< d0
+  /// +1 for extension, -1 for contraction: delta = f11 F + s f12 tau.
+  double chirality() const;
+
+  /// f11, f12 and tau at pitch angle alpha and temperature t_K.
+  Coefficients coefficients(double alpha_rad, double t_K) const;
+
+  /// Eq. (5): alpha from the elongation; throws DomainError if sin(alpha) leaves (0, 1).
+  double pitch_angle(double elongation_m) const;
+
+  /// Eq. (6): the tension at a given elongation and temperature (free-coil law), with
+  /// its consistent tangents.
+  TensionState tension(double elongation_m, double t_K) const;
+
+  /// Eqs. (2)+(5): the elongation under tension F at temperature t_K (bracketed root
+  /// finding in alpha). An extension TCA cannot shorten below its closed length:
+  /// when the free solution has delta < 0 the result is delta = 0, coils_closed.
+  /// A contraction TCA has no such limit: its coils are assumed open (prestretched), so
+  /// delta < 0 (shorter than L) is returned as computed.
+  ElongationState elongation(double tension_N, double t_K) const;
+
+  /// Eqs. (2)+(5) without coil contact: the free-coil elongation (may be negative for an
+  /// extension TCA; then it is below its closed length). Throws DomainError naming the
+  /// searched pitch-angle bracket if no solution exists.
+  ElongationState free_coil_elongation(double tension_N, double t_K) const;
+
+  /// Temperature at which the tension at `elongation_m` equals `tension_N`, searched in
+  /// [t_lo_K, t_hi_K]; throws DomainError naming the range if none lies there.
+  double temperature_for_tension(double tension_N, double elongation_m, double t_lo_K,
+                                 double t_hi_K) const;
+
+  /// Onset temperature of an extension TCA under tension F (F < 0 compresses it): the
+  /// lowest temperature in [t_lo_K, t_hi_K] at which the coils open (delta leaves 0).
+  /// Returns nullopt if they stay closed over the whole range.
+  std::optional<double> onset_temperature(double tension_N, double t_lo_K,
+                                          double t_hi_K) const;
+
+  /// Free stroke: the elongation at zero tension.
+  double free_stroke(double t_K) const { return elongation(0.0, t_K).elongation_m; }
+
+  /// Blocked force: the tension with the TCA held at its closed length (delta = 0).
+  double blocked_force(double t_K) const { return tension(0.0, t_K).tension_N; }
+
+ private:
+  Parameters p_;
+  Material material_;
+  double alpha0_ = 0, n_ = 0, phi0_ = 0, d0_ = 0;
+};
+
+/// One segment of a TCA driven at its own temperature (segments in series, base to tip).
+struct Segment {
+  double fraction;       ///< share of the TCA's length, (0, 1], summing to 1
+  double temperature_K;  ///< segment temperature
+};
+
+/// Value and tangents of the series law F(delta_total, T_1..T_k).
+struct SeriesTensionState {
+  double tension_N;
+  double dF_ddelta_N_m;
+  std::vector<double> dF_dT_N_K;  ///< one per segment
+};
+
+/// Total elongation of segments in series under one shared tension:
+/// delta = sum_k f_k delta(F, T_k) (a fraction f of a TCA scales f11, f12 and n by f).
+double series_elongation(const Tca& tca, double tension_N, const std::vector<Segment>& segments);
+
+/// Shared tension of segments in series whose total elongation is delta (free-coil
+/// law in each segment), with consistent tangents. Bracketed root finding in F.
+SeriesTensionState series_tension(const Tca& tca, double elongation_m,
+                                  const std::vector<Segment>& segments);
+
+}  // namespace tcasim::tca

@@ -1,0 +1,34 @@
+#pragma once
+/// Observed convergence orders and a two-sided order gate for tests.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace tcasim::test_support {
+
+/// Observed orders between successive levels:
+///   p_i = log(e_i / e_{i+1}) / log(h_i / h_{i+1}),  i = 0..n-2,
+/// for any ratios of h (not only halving). A pair with a non-positive or non-finite
+/// error gives NaN (which fails any bracket). Throws std::invalid_argument if the
+/// sizes differ, fewer than 2 levels are given, or h is not positive and distinct
+/// between successive levels.
+std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors);
+
+/// Table with columns level, h, error, observed order (the order of level i is the
+/// one between levels i-1 and i).
+std::string convergence_table(const std::vector<double>& h, const std::vector<double>& errors);
+
+/// Success iff every observed order with index >= first_checked lies in
+/// [expected_order - tolerance, expected_order + tolerance] (two-sided: an order far
+/// above theory means the test measures the wrong thing). The failure message
+/// prints the whole table.
+::testing::AssertionResult OrderInBracket(const std::vector<double>& h,
+                                          const std::vector<double>& errors, double expected_order,
+                                          double tolerance, int first_checked = 0);
+
+/// EXPECT_TRUE(OrderInBracket(...)); use SCOPED_TRACE at the call site for context.
+void ExpectOrderInBracket(const std::vector<double>& h, const std::vector<double>& errors,
+                          double expected_order, double tolerance, int first_checked = 0);
+
+}  // namespace tcasim::test_support

@@ -1,0 +1,68 @@
+#pragma once
+// Materials and TCAs for the tca tests, built in code so the tests do not depend on the
+// scenario parser. Values follow data/materials/*.json and physics-notes section 1.
+#include "common/units.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::tca::testing {
+
+/// silver-nylon-sun2022: constant E, G; diameter ratio polynomial (Sun & Zhao 2022).
+inline Material sun2022() {
+  Material m;
+  m.name = "silver-nylon-sun2022";
+  m.source = "test copy of data/materials/silver-nylon-sun2022.json";
+  m.reference_temperature_K = units::degC_to_K(25.0);
+  m.youngs_modulus_Pa.coefficients = {1.198e9};
+  m.shear_modulus_Pa.coefficients = {0.2218e9};
+  m.diameter.type = DiameterLaw::Type::kRatioPolynomial;
+  m.diameter.ratio_polynomial.coefficients = {1.00169, -6.705e-5, 3.542e-6};
+  m.f12_form = F12Form::kCastigliano;
+  m.min_temperature_K = units::degC_to_K(25.0);
+  m.max_temperature_K = units::degC_to_K(160.0);
+  return m;
+}
+
+/// A material with every property temperature dependent (exercises all derivative terms):
+/// E and G soften linearly and quadratically, linear diameter expansion.
+inline Material softening() {
+  Material m;
+  m.name = "softening-test";
+  m.reference_temperature_K = units::degC_to_K(25.0);
+  m.youngs_modulus_Pa.coefficients = {2.3e9, -5.0e6};
+  m.shear_modulus_Pa.coefficients = {0.45e9, -1.0e6, -2.0e3};
+  m.diameter.type = DiameterLaw::Type::kLinearExpansion;
+  m.diameter.linear_expansion_1_K = 6e-4;
+  m.min_temperature_K = units::degC_to_K(0.0);
+  m.max_temperature_K = units::degC_to_K(180.0);
+  return m;
+}
+
+/// The 3-thread TCA of Fig. 5 (l and L as corrected in physics-notes section 1).
+inline Parameters three_thread(Kind kind = Kind::kExtension,
+                               F12Form form = F12Form::kCastigliano) {
+  Parameters p;
+  p.kind = kind;
+  p.coiled_length_m = 0.110;
+  p.fiber_length_m = 0.497;
+  p.outer_diameter_m = 0.002;
+  p.twist_turns = 300;
+  p.f12_form = form;
+  return p;
+}
+
+/// The 4-thread TCA of Fig. 5.
+inline Parameters four_thread(Kind kind = Kind::kExtension,
+                              F12Form form = F12Form::kCastigliano) {
+  Parameters p;
+  p.kind = kind;
+  p.coiled_length_m = 0.110;
+  p.fiber_length_m = 0.471;
+  p.outer_diameter_m = 0.00213;
+  p.twist_turns = 259;
+  p.f12_form = form;
+  return p;
+}
+
+inline double K(double t_degC) { return units::degC_to_K(t_degC); }
+
+}  // namespace tcasim::tca::testing
