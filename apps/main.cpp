@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   tcasim::app::add_tca_command(app);
   tcasim::app::add_fit_command(app);
+  tcasim::app::add_solve_command(app);
+  tcasim::app::add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

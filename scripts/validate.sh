@@ -20,6 +20,7 @@ cmake --build "$build" -j "$jobs"
 # program name | plot script (empty when none) | extra arguments
 programs=(
   "validate_fig5_tca|plot_fig5.py|--tcasim $build/bin/tcasim"
+  "validate_fig6_radius|plot_fig6.py|"
 )
 echo "[validate] 3/4 validation programs -> $out"
 failed=()

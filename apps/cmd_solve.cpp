@@ -1,0 +1,172 @@
+// `tcasim solve` and `tcasim sweep`: forward kinetostatics of one scenario.
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "apps/cli_util.hpp"
+#include "apps/commands.hpp"
+#include "common/error.hpp"
+#include "common/units.hpp"
+#include "cosserat/shooting.hpp"
+#include "rod/result.hpp"
+#include "rod/scenario.hpp"
+
+namespace tcasim::app {
+
+namespace {
+
+/// Exit code of a solve that ran but did not converge (the result file is still written).
+constexpr int kExitNotConverged = 4;
+
+struct IntegratorFlags {
+  int steps = 0;        // 0: solver default
+  double rtol = 0.0;    // 0: RK4
+};
+
+void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
+  auto* steps = cmd->add_option("--steps", f.steps,
+                                "cosserat: fixed RK4 steps (even, >= 2; default 100)");
+  auto* rtol = cmd->add_option("--rtol", f.rtol,
+                               "cosserat: use SUNDIALS CVODE with this relative tolerance");
+  steps->excludes(rtol);
+}
+
+cosserat::Options cosserat_options(const IntegratorFlags& f) {
+  cosserat::Options o;
+  if (f.rtol != 0.0) {
+    require(f.rtol > 0.0 && f.rtol < 1.0, "--rtol", f.rtol, "must be in (0, 1)");
+    o.integrator.method = ode::Method::kCvode;
+    o.integrator.relative_tolerance = f.rtol;
+    o.integrator.absolute_tolerance = f.rtol * 1e-3;
+  } else if (f.steps != 0) {
+    require(f.steps >= 2 && f.steps % 2 == 0, "--steps", f.steps, "must be an even number >= 2");
+    o.integrator.method = ode::Method::kRk4;
+    o.integrator.steps = f.steps;
+  }
+  return o;
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app) {
+  struct Flags {
+    std::string scenario, method = "cosserat", out;
+    IntegratorFlags integrator;
+  };
+  auto flags = std::make_shared<Flags>();
+  auto* cmd = app.add_subcommand("solve", "Forward kinetostatics: solve one scenario and write a result file");
+  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
+  cmd->add_option("--method", flags->method, "solver")->check(CLI::IsMember({"cosserat"}));
+  add_integrator_flags(cmd, flags->integrator);
+  cmd->add_option("--out", flags->out, "result file (default: stdout)");
+  cmd->callback([flags] {
+    const rod::RodModel model = rod::read_scenario(flags->scenario);
+    const rod::Result result = cosserat::solve(model, cosserat_options(flags->integrator));
+    rod::write_result(result, flags->out);
+    if (!result.converged) {
+      fmt::print(stderr, "tcasim solve: not converged: {}\n", result.message);
+      throw CLI::RuntimeError(kExitNotConverged);
+    }
+  });
+}
+
+void add_sweep_command(CLI::App& app) {
+  struct Flags {
+    std::string scenario, actuator, temperatures, tensions, out;
+    IntegratorFlags integrator;
+  };
+  auto flags = std::make_shared<Flags>();
+  auto* cmd = app.add_subcommand(
+      "sweep", "Solve a scenario over a range of one actuator's temperature or tension (warm-started); CSV out");
+  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
+  cmd->add_option("--actuator", flags->actuator, "name of the actuator to sweep")->required();
+  auto* temps = cmd->add_option("--temperatures-degC", flags->temperatures,
+                                "TCA temperatures START:STOP:STEP [degC] (every segment)");
+  auto* tens = cmd->add_option("--tensions-N", flags->tensions, "tensions START:STOP:STEP [N] (tension drive)");
+  temps->excludes(tens);
+  add_integrator_flags(cmd, flags->integrator);
+  cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
+  cmd->callback([flags] {
+    const rod::RodModel model = rod::read_scenario(flags->scenario);
+    std::size_t index = model.actuators.size();
+    for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+      if (model.actuators[i].name == flags->actuator) index = i;
+    }
+    if (index == model.actuators.size()) {
+      std::string names;
+      for (const auto& a : model.actuators) names += (names.empty() ? "" : ", ") + a.name;
+      throw InputError("--actuator", flags->actuator, "names no actuator of the scenario (it has: " + names + ")");
+    }
+    const rod::Actuator& act = model.actuators[index];
+    const bool by_temperature = !flags->temperatures.empty();
+    if (!by_temperature && flags->tensions.empty()) {
+      throw InputError("--temperatures-degC/--tensions-N", "(none)", "one of them is required");
+    }
+    if (by_temperature && act.drive.type != rod::Drive::Type::kTca) {
+      throw InputError("--temperatures-degC", flags->temperatures,
+                       "needs a TCA-driven actuator; '" + act.name + "' has a tension drive");
+    }
+    if (!by_temperature && act.drive.type != rod::Drive::Type::kTension) {
+      throw InputError("--tensions-N", flags->tensions,
+                       "needs a tension-driven actuator; '" + act.name + "' has a TCA drive");
+    }
+    const std::vector<double> values = by_temperature
+                                           ? parse_range(flags->temperatures, "--temperatures-degC")
+                                           : parse_range(flags->tensions, "--tensions-N");
+    if (by_temperature) {
+      for (double t : values) {
+        require(t > -units::kZeroCelsius_K, "--temperatures-degC", t, "is below absolute zero");
+      }
+    }
+
+    cosserat::ShootingSolver solver(model, cosserat_options(flags->integrator));
+    cosserat::Actuation actuation = cosserat::Actuation::from_model(model);
+    cosserat::Solution solution;
+    Output out(flags->out);
+    std::ostream& os = out.stream();
+    fmt::print(os, "{},converged,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m",
+               by_temperature ? "temperature_degC" : "tension_N");
+    for (const auto& a : model.actuators) fmt::print(os, ",{0}_tension_N,{0}_elongation_m", a.name);
+    fmt::print(os, "\n");
+
+    const bool progress = values.size() >= 20;
+    const auto start = std::chrono::steady_clock::now();
+    int failures = 0;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (by_temperature) {
+        actuation.set_temperature_K(index, units::degC_to_K(values[k]));
+      } else {
+        actuation.actuators[index].tension_N = values[k];
+      }
+      const cosserat::Summary summary = solver.solve(actuation, solution);
+      const rod::Result r = solver.make_result(actuation, solution, summary);
+      if (!r.converged) ++failures;
+      fmt::print(os, "{},{},{},{:.6e},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
+                 r.iterations, r.residual, r.tip_position_W_m.x(), r.tip_position_W_m.y(),
+                 r.tip_position_W_m.z(),
+                 r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
+      for (const auto& a : r.actuators) fmt::print(os, ",{:.12e},{:.12e}", a.tension_N, a.elongation_m);
+      fmt::print(os, "\n");
+      if (progress) {
+        const double secs =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        fmt::print(stderr, "\rtcasim sweep: {}/{} points, {:.2f} s{}", k + 1, values.size(), secs,
+                   k + 1 == values.size() ? "\n" : "");
+      }
+    }
+    os.flush();
+    if (failures > 0) {
+      fmt::print(stderr, "tcasim sweep: {} of {} points did not converge (converged = 0 in the CSV)\n",
+                 failures, values.size());
+      throw CLI::RuntimeError(kExitNotConverged);
+    }
+  });
+}
+
+}  // namespace tcasim::app

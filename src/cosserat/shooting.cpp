@@ -1,0 +1,1065 @@
+#include "cosserat/shooting.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "common/error.hpp"
+
+namespace tcasim::cosserat {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// State layout (see shooting.hpp).
+constexpr int kP = 0;
+constexpr int kR = 3;
+constexpr int kNu = 12;
+constexpr int kOmega = 15;
+constexpr int kC = 18;
+constexpr int kDelta = 21;
+
+/// Forces are scaled by F_c >= kStiffnessFloor max(GA, EA): the tip force residual carries
+/// K_nu times the strain round-off accumulated over an IVP (~1e-14), so with this floor
+/// that round-off stays ~1e-10 of F_c, i.e. at the default tolerance, for stiff rods
+/// (EA >> EI/L^2), and the test ||r||_inf <= tolerance remains reachable.
+constexpr double kStiffnessFloor = 1e-4;
+/// Armijo constant of the backtracking line search on phi = ||r||^2 / 2 (Newton's
+/// direction d solves J d = -r, so phi'(0) = -2 phi: accept phi(t) <= (1 - 2 c t) phi).
+constexpr double kArmijo = 1e-4;
+/// Relative finite-difference steps: sqrt(eps) (forward) and eps^(1/3) (central)
+/// balance truncation and round-off errors.
+/// With a Broyden-updated (stale) Jacobian, at most this many halvings before the
+/// Jacobian is recomputed by differences.
+constexpr int kStaleLineSearchSteps = 1;
+/// A stale-Jacobian step that reduces ||r|| by less than this factor discards the
+/// Jacobian (the next iteration recomputes it).
+constexpr double kBroydenMinReduction = 0.5;
+/// Forward sensitivities keep their 6 x nx work matrix on the stack: at most this many
+/// unknowns (10 TCA drives); beyond, the solver uses forward differences instead.
+constexpr int kMaxSensitivityUnknowns = 16;
+/// Scaled residual to which the coarse level is converged: coarse IVPs are cheap, and the
+/// coarse-grid correction of a warm start is only as accurate as the coarse solutions.
+constexpr double kCoarseTolerance = 1e-9;
+constexpr double kForwardStep = 1.4901161193847656e-08;  // sqrt(eps)
+constexpr double kCentralStep = 6.0554544523933395e-06;  // eps^(1/3)
+
+inline Mat3 hat(const Vec3& v) {
+  Mat3 m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
+
+/// Solver of the symmetric 6x6 strain-derivative system M = [A B; B^T C] (fixed size, no
+/// heap) by block elimination with Eigen's closed-form 3x3 inverses: S = C - B^T A^-1 B,
+/// z_omega = S^-1 (b_omega - (A^-1 B)^T b_nu), z_nu = A^-1 b_nu - (A^-1 B) z_omega.
+/// A = K_nu + sum A_i is positive definite unless strings are compressed beyond the
+/// shear/axial stiffness; when A or S is numerically singular (relative determinant below
+/// kSingularBlock) it falls back to LU with partial pivoting of M.
+class StrainSystem {
+ public:
+  explicit StrainSystem(const Mat6& M) {
+    const Mat3 A = M.topLeftCorner<3, 3>();
+    const Mat3 B = M.topRightCorner<3, 3>();
+    const Mat3 C = M.bottomRightCorner<3, 3>();
+    block_ = well_conditioned(A);
+    if (block_) {
+      A_inv_ = A.inverse();
+      AinvB_ = A_inv_ * B;
+      const Mat3 S = C - B.transpose() * AinvB_;
+      block_ = well_conditioned(S);
+      if (block_) S_inv_ = S.inverse();
+    }
+    if (!block_) lu_.compute(M);
+  }
+  /// Solves M Z = R for a 6 x n right-hand side (in place).
+  template <typename Rhs>
+  void solve_in_place(Rhs& R) const {
+    if (!block_) {
+      R = lu_.solve(R);
+      return;
+    }
+    const auto b_nu = R.template topRows<3>();
+    const auto b_om = R.template bottomRows<3>();
+    const Eigen::Matrix<double, 3, Rhs::ColsAtCompileTime, 0, 3, Rhs::MaxColsAtCompileTime> z_om =
+        S_inv_ * (b_om - AinvB_.transpose() * b_nu);
+    R.template topRows<3>() = A_inv_ * b_nu - AinvB_ * z_om;
+    R.template bottomRows<3>() = z_om;
+  }
+
+ private:
+  /// Relative determinant det(X) / prod(|X_ii|) below which a block counts as singular.
+  static constexpr double kSingularBlock = 1e-10;
+  static bool well_conditioned(const Mat3& X) {
+    const double scale = std::abs(X(0, 0) * X(1, 1) * X(2, 2));
+    const double det = X.determinant();
+    return std::isfinite(det) && scale > 0.0 && std::abs(det) > kSingularBlock * scale;
+  }
+  bool block_ = false;
+  Mat3 A_inv_, AinvB_, S_inv_;
+  Eigen::PartialPivLU<Mat6> lu_;
+};
+
+}  // namespace
+
+const char* to_string(Summary::Status s) {
+  switch (s) {
+    case Summary::Status::kConverged: return "converged";
+    case Summary::Status::kMaxIterations: return "max_iterations";
+    case Summary::Status::kLineSearchFailed: return "line_search_failed";
+    case Summary::Status::kSingularJacobian: return "singular_jacobian";
+    case Summary::Status::kContinuationFailed: return "continuation_failed";
+    case Summary::Status::kInitialPointFailed: return "initial_point_failed";
+    case Summary::Status::kUnsupported: return "unsupported";
+  }
+  return "unknown";
+}
+
+Actuation Actuation::from_model(const rod::RodModel& model) {
+  Actuation a;
+  a.tip_force_W_N = model.tip_force_W_N;
+  a.tip_moment_W_Nm = model.tip_moment_W_Nm;
+  a.gravity_W_m_s2 = model.gravity_W_m_s2;
+  a.actuators.reserve(model.actuators.size());
+  for (const rod::Actuator& act : model.actuators) {
+    ActuatorDrive d;
+    d.tension_N = act.drive.tension_N;
+    d.segments = act.drive.segments;
+    a.actuators.push_back(std::move(d));
+  }
+  return a;
+}
+
+void Actuation::set_temperature_K(std::size_t index, double t_K) {
+  require(index < actuators.size(), "actuation.actuators index", static_cast<double>(index),
+          "must be < the number of actuators");
+  for (tca::Segment& seg : actuators[index].segments) seg.temperature_K = t_K;
+}
+
+// ---------------------------------------------------------------------------------------
+struct ShootingSolver::Impl {
+  const rod::RodModel& model;
+  Options options;
+  ode::Integrator integrator;
+  std::optional<ode::Integrator> output_integrator;
+  std::optional<ode::Integrator> sens_integrator;  // kSensitivity: dimension dim (1 + nx)
+  ode::RhsFunction rhs_sens;
+  // Coarse RK4 level for cold starts (Options::coarse_steps), and the active level.
+  std::optional<ode::Integrator> coarse_integrator, coarse_sens_integrator;
+  ode::Integrator* active_plain = nullptr;
+  ode::Integrator* active_sens = nullptr;
+  Eigen::VectorXd Y;                // augmented state
+  std::vector<double> dF_ddelta;    // per actuator, at the last tip residual (TCA drives)
+
+  int n_act = 0;
+  int n_tca = 0;
+  int nx = 0;
+  int dim = 0;
+  double L = 0.0;
+  double Fc = 1.0;
+  Vec3 K_nu, K_omega, nu_star, omega_star;
+  std::vector<int> unknown_of;   // actuator -> unknown index (-1 for tension drives)
+  std::vector<double> length_ratio;
+  std::vector<double> count;
+  std::vector<bool> straight;
+
+  // Current IVP parameters (set before each integration).
+  std::vector<double> cT;  // count * tension per actuator
+  Vec3 f_ext_W = Vec3::Zero();
+  ode::RhsFunction rhs;
+
+  // Work buffers.
+  Eigen::VectorXd y;
+  Eigen::VectorXd y_acc, x_acc;  // y(L) at the last accepted point x_acc (load fraction 1 only)
+  bool acc_full_load = false;
+  std::vector<std::vector<tca::Segment>> scaled_segments;
+  int ivp_count = 0;
+
+  Impl(const rod::RodModel& m, const Options& o)
+      : model(m), options(validated(m, o)), integrator(state_dimension(m), options.integrator) {
+    n_act = static_cast<int>(model.actuators.size());
+    dim = state_dimension(model);
+    L = model.length_m;
+    K_nu = model.shear_extension_stiffness();
+    K_omega = model.bending_torsion_stiffness();
+    nu_star = Vec3::UnitZ();
+    omega_star = model.reference_curvature_B_1_m;
+    const double EI = std::min(K_omega.x(), K_omega.y());
+    Fc = std::max(EI / (L * L), kStiffnessFloor * K_nu.maxCoeff());
+    unknown_of.assign(n_act, -1);
+    for (int i = 0; i < n_act; ++i) {
+      const rod::Actuator& a = model.actuators[i];
+      if (a.drive.type == rod::Drive::Type::kTca) unknown_of[i] = 6 + n_tca++;
+      length_ratio.push_back(a.rest_length_m / L);
+      count.push_back(static_cast<double>(a.count));
+      straight.push_back(a.routing.type == rod::Routing::Type::kStraight);
+    }
+    nx = 6 + n_tca;
+    cT.assign(n_act, 0.0);
+    y.resize(dim);
+    scaled_segments.resize(n_act);
+    rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
+    cache.resize(n_act);
+    dF_ddelta.assign(n_act, 0.0);
+    if (options.jacobian == JacobianMethod::kSensitivity && nx > kMaxSensitivityUnknowns) {
+      options.jacobian = JacobianMethod::kForwardDifference;
+    }
+    ode::IntegratorOptions coarse = options.integrator;
+    coarse.steps = options.coarse_steps;
+    const bool use_coarse = options.integrator.method == ode::Method::kRk4 &&
+                            options.coarse_steps > 0 &&
+                            2 * options.coarse_steps <= options.integrator.steps;
+    if (use_coarse) coarse_integrator.emplace(dim, coarse);
+    if (options.jacobian == JacobianMethod::kSensitivity) {
+      sens_integrator.emplace(dim * (1 + nx), options.integrator);
+      if (use_coarse) coarse_sens_integrator.emplace(dim * (1 + nx), coarse);
+      rhs_ws.resize(6, nx);
+      Y.resize(dim * (1 + nx));
+      rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+        eval_rhs_sens(s, yy, dy);
+      };
+    }
+    use_level(false);
+  }
+
+  static int state_dimension(const rod::RodModel& m) {
+    return kDelta + static_cast<int>(m.actuators.size());
+  }
+
+  static Options validated(const rod::RodModel& m, Options o) {
+    require(m.length_m > 0.0 && std::isfinite(m.length_m), "model.length_m", m.length_m,
+            "must be > 0");
+    require(o.tolerance > 0.0, "options.tolerance", o.tolerance, "must be > 0");
+    require(o.coarse_steps >= 0 && o.coarse_steps % 2 == 0, "options.coarse_steps", o.coarse_steps,
+            "must be even and >= 0");
+    require(o.max_iterations >= 1, "options.max_iterations", o.max_iterations, "must be >= 1");
+    require(o.max_line_search_steps >= 1, "options.max_line_search_steps",
+            o.max_line_search_steps, "must be >= 1");
+    require(o.min_continuation_step > 0.0 && o.min_continuation_step < 1.0,
+            "options.min_continuation_step", o.min_continuation_step, "must be in (0, 1)");
+    require(o.centerline_intervals >= 0 && o.centerline_intervals % 2 == 0,
+            "options.centerline_intervals", o.centerline_intervals,
+            "must be even and >= 0 (a sample must lie at L/2)");
+    if (o.integrator.method == ode::Method::kRk4) {
+      require(o.integrator.steps % 2 == 0, "options.integrator.steps", o.integrator.steps,
+              "must be even (a node must lie at L/2)");
+      require(o.centerline_intervals == 0 || o.integrator.steps % o.centerline_intervals == 0,
+              "options.centerline_intervals", o.centerline_intervals,
+              "must divide options.integrator.steps = " + std::to_string(o.integrator.steps));
+    }
+    o.integrator.output_intervals = 0;
+    return o;
+  }
+
+  // docs/conventions.md "Body-frame ODEs solved by the shooting solver".
+  void eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) const {
+    const Eigen::Map<const Mat3> R(yy.data() + kR);
+    const Vec3 nu = yy.segment<3>(kNu);
+    const Vec3 omega = yy.segment<3>(kOmega);
+    // [Pawlowski2019] Eqs. (9)-(10): n_B = K_nu (nu - nu*), m_B = K_omega (omega - omega*).
+    const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
+    const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
+
+    Mat6 M = Mat6::Zero();
+    M.diagonal().head<3>() = K_nu;
+    M.diagonal().tail<3>() = K_omega;
+    // b_nu = -omega x n_B - R^T f_ext - sum g_i;  b_omega = -omega x m_B - nu x n_B - sum r_i x g_i
+    Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+    Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+    for (int i = 0; i < n_act; ++i) {
+      const rod::Routing& routing = model.actuators[i].routing;
+      Vec3 r, dr, ddr;
+      if (straight[i]) {
+        r << routing.offset_m.x(), routing.offset_m.y(), 0.0;
+        dr.setZero();
+        ddr.setZero();
+      } else {
+        r = routing.r(s);
+        dr = routing.dr(s);
+        ddr = routing.ddr(s);
+      }
+      // [Pawlowski2019] Eq. (19): q = nu + omega x r + r'.
+      const Vec3 q = nu + omega.cross(r) + dr;
+      const double q_norm = q.norm();
+      dy[kDelta + i] = q_norm - length_ratio[i];  // delta_i' = |q_i| - L_i
+      if (cT[i] == 0.0) continue;
+      const Vec3 qh = q / q_norm;
+      const Mat3 P = Mat3::Identity() - qh * qh.transpose();
+      // A_i = c_i T_i P_i / |q_i|
+      const Mat3 A = (cT[i] / q_norm) * P;
+      const Mat3 rh = hat(r);
+      const Mat3 A_rh = A * rh;
+      M.topLeftCorner<3, 3>() += A;
+      M.topRightCorner<3, 3>() -= A_rh;
+      M.bottomLeftCorner<3, 3>() -= A_rh.transpose();  // hat(r) A = -(A hat(r))^T
+      M.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;  // -hat(r) A hat(r)
+      // g_i = c_i T_i [omega x qh + P (omega x r' + r'') / |q|]
+      const Vec3 g = cT[i] * (omega.cross(qh) + P * (omega.cross(dr) + ddr) / q_norm);
+      b_nu -= g;
+      b_omega -= r.cross(g);
+    }
+    Vec6 b;
+    b << b_nu, b_omega;
+    Vec6 z = b;
+    StrainSystem(M).solve_in_place(z);
+    // [Pawlowski2019] Eqs. (7)-(8): p' = R nu, R' = R hat(omega).
+    dy.segment<3>(kP) = R * nu;
+    Eigen::Map<Mat3>(dy.data() + kR) = R * hat(omega);
+    dy.segment<6>(kNu) = z;
+    dy.segment<3>(kC) = yy.segment<3>(kP);  // c' = p
+  }
+
+  /// Per-actuator quantities shared by the state and sensitivity parts of the RHS.
+  struct ActuatorCache {
+    Vec3 r, dr, qh, v, Pv, gb, Pw;
+    double q_norm = 1.0;
+  };
+  mutable std::vector<ActuatorCache> cache;
+  mutable Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxSensitivityUnknowns> rhs_ws;  // 6 x nx
+
+  /// RHS of the state and of its forward sensitivities Y_j = dy/dx_j (the variational
+  /// equations Y_j' = (df/dy) Y_j + df/dx_j, x_j = T_k entering through c_k T_k). Layout:
+  /// Y = (y, Y_0, ..., Y_{nx-1}), each block of length `dim`. The directional derivative
+  /// of the linear system M z = b is dz = M^-1 (db - dM z), with the same LU as z.
+  void eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const {
+    const double* yy = Ya.data();
+    const Eigen::Map<const Mat3> R(yy + kR);
+    const Vec3 nu(yy + kNu);
+    const Vec3 omega(yy + kOmega);
+    const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
+    const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
+    Mat6 M = Mat6::Zero();
+    M.diagonal().head<3>() = K_nu;
+    M.diagonal().tail<3>() = K_omega;
+    Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+    Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+    for (int i = 0; i < n_act; ++i) {
+      ActuatorCache& c = cache[i];
+      const rod::Routing& routing = model.actuators[i].routing;
+      Vec3 ddr;
+      if (straight[i]) {
+        c.r << routing.offset_m.x(), routing.offset_m.y(), 0.0;
+        c.dr.setZero();
+        ddr.setZero();
+      } else {
+        c.r = routing.r(s);
+        c.dr = routing.dr(s);
+        ddr = routing.ddr(s);
+      }
+      const Vec3 q = nu + omega.cross(c.r) + c.dr;
+      c.q_norm = q.norm();
+      c.qh = q / c.q_norm;
+      dY[kDelta + i] = c.q_norm - length_ratio[i];
+      c.v = omega.cross(c.dr) + ddr;
+      c.Pv = c.v - c.qh * c.qh.dot(c.v);
+      c.gb = omega.cross(c.qh) + c.Pv / c.q_norm;  // g_i = c_i T_i gb_i
+      if (cT[i] == 0.0) continue;
+      const Mat3 A = (cT[i] / c.q_norm) * (Mat3::Identity() - c.qh * c.qh.transpose());
+      const Mat3 rh = hat(c.r);
+      const Mat3 A_rh = A * rh;
+      M.topLeftCorner<3, 3>() += A;
+      M.topRightCorner<3, 3>() -= A_rh;
+      M.bottomLeftCorner<3, 3>() -= A_rh.transpose();
+      M.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;
+      const Vec3 g = cT[i] * c.gb;
+      b_nu -= g;
+      b_omega -= c.r.cross(g);
+    }
+    Vec6 b;
+    b << b_nu, b_omega;
+    const StrainSystem lu(M);
+    Vec6 z = b;
+    lu.solve_in_place(z);
+    dY.segment<3>(kP) = R * nu;
+    Eigen::Map<Mat3>(dY.data() + kR) = R * hat(omega);
+    dY.segment<6>(kNu) = z;
+    dY.segment<3>(kC) = Ya.segment<3>(kP);
+    const Vec3 zn = z.head<3>(), zo = z.tail<3>();
+    for (int i = 0; i < n_act; ++i) {
+      ActuatorCache& c = cache[i];
+      const Vec3 w = zn - c.r.cross(zo);  // M z = K z + sum [A_i w_i; r_i x A_i w_i]
+      c.Pw = w - c.qh * c.qh.dot(w);
+    }
+    // Right-hand sides db_j - dM_j z of all directions, solved together.
+    auto& B = rhs_ws;
+    for (int j = 0; j < nx; ++j) {
+      const double* yj = yy + dim * (j + 1);
+      double* dyj = dY.data() + dim * (j + 1);
+      const Eigen::Map<const Mat3> dR(yj + kR);
+      const Vec3 dnu(yj + kNu), dom(yj + kOmega);
+      const Vec3 dn_B = K_nu.cwiseProduct(dnu), dm_B = K_omega.cwiseProduct(dom);
+      Vec3 db_nu = -dom.cross(n_B) - omega.cross(dn_B) - dR.transpose() * f_ext_W;
+      Vec3 db_om = -dom.cross(m_B) - omega.cross(dm_B) - dnu.cross(n_B) - nu.cross(dn_B);
+      for (int i = 0; i < n_act; ++i) {
+        const ActuatorCache& c = cache[i];
+        const Vec3 dq = dnu + dom.cross(c.r);
+        const double dqn = c.qh.dot(dq);
+        dyj[kDelta + i] = dqn;
+        const double dcT = unknown_of[i] == j ? count[i] : 0.0;
+        if (cT[i] == 0.0 && dcT == 0.0) continue;
+        const Vec3 dqh = (dq - c.qh * dqn) / c.q_norm;
+        // dP u = -(dqh (qh . u) + qh (dqh . u))
+        const Vec3 dv = dom.cross(c.dr);
+        const Vec3 dPv = -(dqh * c.qh.dot(c.v) + c.qh * dqh.dot(c.v));
+        const Vec3 Pdv = dv - c.qh * c.qh.dot(dv);
+        const Vec3 dgb = dom.cross(c.qh) + omega.cross(dqh) + (dPv + Pdv) / c.q_norm -
+                         c.Pv * (dqn / (c.q_norm * c.q_norm));
+        const Vec3 dg = dcT * c.gb + cT[i] * dgb;
+        // d(A w) with w fixed: A = c T P / |q|
+        const Vec3 w = zn - c.r.cross(zo);
+        const Vec3 dPw = -(dqh * c.qh.dot(w) + c.qh * dqh.dot(w));
+        const Vec3 dAw = (dcT * c.Pw + cT[i] * dPw) / c.q_norm -
+                         c.Pw * (cT[i] * dqn / (c.q_norm * c.q_norm));
+        db_nu -= dg + dAw;
+        db_om -= c.r.cross(dg + dAw);
+      }
+      B.col(j) << db_nu, db_om;
+      Eigen::Map<Vec3>(dyj + kP) = dR * nu + R * dnu;
+      Eigen::Map<Mat3>(dyj + kR) = dR * hat(omega) + R * hat(dom);
+      Eigen::Map<Vec3>(dyj + kC) = Vec3(yj + kP);
+    }
+    lu.solve_in_place(B);
+    for (int j = 0; j < nx; ++j) Eigen::Map<Vec6>(dY.data() + dim * (j + 1) + kNu) = B.col(j);
+  }
+
+  /// Sets cT and f_ext for load fraction lambda and unknowns x; fills scaled segments.
+  void set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x) {
+    for (int i = 0; i < n_act; ++i) {
+      const int k = unknown_of[i];
+      const double T = k >= 0 ? x[k] : lambda * act.actuators[i].tension_N;
+      cT[i] = count[i] * T;
+      if (k >= 0) {
+        const auto& tca = *model.actuators[i].drive.tca;
+        const double t_ref = tca.material().reference_temperature_K;
+        auto& segs = scaled_segments[i];
+        segs = act.actuators[i].segments;  // no allocation after the first call
+        for (tca::Segment& seg : segs) seg.temperature_K = t_ref + lambda * (seg.temperature_K - t_ref);
+      }
+    }
+    f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+  }
+
+  void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
+    y0.setZero();
+    y0.segment<3>(kP) = model.base_position_W_m;
+    Eigen::Map<Mat3>(y0.data() + kR) = model.R_WB0;
+    y0.segment<3>(kNu) = x.head<3>();
+    y0.segment<3>(kOmega) = x.segment<3>(3);
+  }
+
+  /// TCA tension at elongation delta with the (scaled) segments.
+  static double tca_force(const tca::Tca& tca, double delta, const std::vector<tca::Segment>& segs,
+                          bool* below_closed, double* dF) {
+    if (segs.size() == 1) {
+      const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
+      if (below_closed) *below_closed = ts.below_closed_length;
+      *dF = ts.dF_ddelta_N_m;
+      return ts.tension_N;
+    }
+    if (below_closed) {
+      *below_closed = tca.parameters().kind == tca::Kind::kExtension && delta < 0.0;
+    }
+    const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
+    *dF = ts.dF_ddelta_N_m;
+    return ts.tension_N;
+  }
+
+  /// Scaled residual at x; y(L) left in `y`. False when the IVP or a TCA law fails.
+  bool residual(const Actuation& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                bool* below_closed = nullptr) {
+    if (!all_finite(x)) return false;
+    set_parameters(act, lambda, x);
+    initial_state(x, y);
+    ++ivp_count;
+    const ode::IntegrationSummary is = active_plain->integrate(rhs, 0.0, L, y);
+    if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(y)) return false;
+    return tip_residual(act, lambda, x, y, r, below_closed);
+  }
+
+  /// Residual and its exact Jacobian from one augmented IVP (kSensitivity).
+  bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                             Eigen::VectorXd& r, Eigen::MatrixXd& J, bool* below_closed = nullptr) {
+    if (!all_finite(x)) return false;
+    set_parameters(act, lambda, x);
+    Y.setZero();
+    initial_state(x, y);
+    Y.head(dim) = y;
+    for (int j = 0; j < 6; ++j) Y[dim * (j + 1) + kNu + j] = 1.0;  // d y(0) / d (nu0, omega0)
+    ++ivp_count;
+    const ode::IntegrationSummary is = active_sens->integrate(rhs_sens, 0.0, L, Y);
+    if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(Y)) return false;
+    y = Y.head(dim);
+    if (!tip_residual(act, lambda, x, y, r, below_closed)) return false;
+    // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
+    J.resize(nx, nx);
+    const Eigen::Map<const Mat3> R(y.data() + kR);
+    const Vec3 nu = y.segment<3>(kNu), omega = y.segment<3>(kOmega);
+    const Vec3 F_e = lambda * act.tip_force_W_N, M_e = lambda * act.tip_moment_W_Nm;
+    for (int j = 0; j < nx; ++j) {
+      const double* yj = Y.data() + dim * (j + 1);
+      const Eigen::Map<const Mat3> dR(yj + kR);
+      const Vec3 dnu(yj + kNu), dom(yj + kOmega);
+      Vec3 drn = K_nu.cwiseProduct(dnu) - dR.transpose() * F_e;
+      Vec3 drm = K_omega.cwiseProduct(dom) - dR.transpose() * M_e;
+      for (int i = 0; i < n_act; ++i) {
+        const double dcT = unknown_of[i] == j ? count[i] : 0.0;
+        if (cT[i] == 0.0 && dcT == 0.0) continue;
+        const rod::Routing& ro = model.actuators[i].routing;
+        const Vec3 ri = ro.r(L);
+        const Vec3 q = nu + omega.cross(ri) + ro.dr(L);
+        const double qn = q.norm();
+        const Vec3 qh = q / qn;
+        const Vec3 dq = dnu + dom.cross(ri);
+        const Vec3 dqh = (dq - qh * qh.dot(dq)) / qn;
+        const Vec3 dF = dcT * qh + cT[i] * dqh;
+        drn += dF;
+        drm += ri.cross(dF);
+      }
+      J.block<3, 1>(0, j) = drn / Fc;
+      J.block<3, 1>(3, j) = drm / (Fc * L);
+      for (int i = 0; i < n_act; ++i) {
+        const int k = unknown_of[i];
+        if (k < 0) continue;
+        J(k, j) = ((k == j ? 1.0 : 0.0) - dF_ddelta[i] * yj[kDelta + i]) / Fc;
+      }
+    }
+    return J.allFinite();
+  }
+
+  // docs/conventions.md "Tip conditions" (body frame), scaled.
+  bool tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                    const Eigen::VectorXd& yL, Eigen::VectorXd& r, bool* below_closed) {
+    r.resize(nx);
+    const Eigen::Map<const Mat3> R(yL.data() + kR);
+    const Vec3 nu = yL.segment<3>(kNu);
+    const Vec3 omega = yL.segment<3>(kOmega);
+    Vec3 rn = K_nu.cwiseProduct(nu - nu_star) - R.transpose() * (lambda * act.tip_force_W_N);
+    Vec3 rm = K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
+    for (int i = 0; i < n_act; ++i) {
+      if (cT[i] == 0.0) continue;
+      const Vec3 ri = model.actuators[i].routing.r(L);
+      const Vec3 q = nu + omega.cross(ri) + model.actuators[i].routing.dr(L);
+      const Vec3 qh = q.normalized();
+      rn += cT[i] * qh;
+      rm += cT[i] * ri.cross(qh);
+    }
+    r.head<3>() = rn / Fc;
+    r.segment<3>(3) = rm / (Fc * L);
+    if (below_closed) *below_closed = false;
+    for (int i = 0; i < n_act; ++i) {
+      const int k = unknown_of[i];
+      if (k < 0) continue;
+      bool bc = false;
+      double F = 0.0;
+      try {
+        F = tca_force(*model.actuators[i].drive.tca, yL[kDelta + i], scaled_segments[i], &bc,
+                      &dF_ddelta[i]);
+      } catch (const DomainError&) {
+        return false;
+      }
+      if (below_closed && bc) *below_closed = true;
+      r[k] = (x[k] - F) / Fc;
+    }
+    return all_finite(r);
+  }
+
+  Eigen::VectorXd typical_scale() const {
+    Eigen::VectorXd t(nx);
+    t.head<3>().setOnes();
+    t.segment<3>(3).setConstant(1.0 / L);
+    t.tail(n_tca).setConstant(Fc);
+    return t;
+  }
+
+  bool fd_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                   const Eigen::VectorXd& r0, Eigen::MatrixXd& J) {
+    J.resize(nx, nx);
+    const Eigen::VectorXd typ = typical_scale();
+    Eigen::VectorXd xp = x, rp(nx), rm(nx);
+    const bool central = options.jacobian == JacobianMethod::kCentralDifference;
+    for (int j = 0; j < nx; ++j) {
+      const double base = std::max(std::abs(x[j]), typ[j]);
+      double h = (central ? kCentralStep : kForwardStep) * base;
+      const double xj = x[j];
+      xp[j] = xj + h;
+      h = xp[j] - xj;  // exactly representable step
+      if (!residual(act, lambda, xp, rp)) { xp[j] = xj; return false; }
+      if (central) {
+        xp[j] = xj - h;
+        if (!residual(act, lambda, xp, rm)) { xp[j] = xj; return false; }
+        J.col(j) = (rp - rm) / (2.0 * h);
+      } else {
+        J.col(j) = (rp - r0) / h;
+      }
+      xp[j] = xj;
+    }
+    return J.allFinite();
+  }
+
+  /// Constant strains of the closed form (docs/conventions.md) for tensions cT (count x
+  /// tension per actuator), offsets taken at s = 0, plus the reference strains.
+  void closed_form_strains(const std::vector<double>& cTs, Vec3& nu, Vec3& omega) const {
+    double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
+    for (int i = 0; i < n_act; ++i) {
+      const Vec3 r = model.actuators[i].routing.r(0.0);
+      sum_T += cTs[i];
+      sum_Tx += cTs[i] * r.x();
+      sum_Ty += cTs[i] * r.y();
+    }
+    nu = nu_star - Vec3(0.0, 0.0, sum_T / K_nu.z());
+    omega = omega_star + Vec3(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
+  }
+
+  /// Initial guess: the closed-form constant-strain rod (docs/conventions.md) of the known
+  /// tensions and of the TCA tensions solving T_k = F_tca(delta_k(T)) with the closed-form
+  /// elongations (a small Newton iteration; gravity and tip loads are ignored). Falls back
+  /// to T_tca = 0 if that iteration fails.
+  Eigen::VectorXd straight_guess(const Actuation& act, double lambda) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
+    set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
+    std::vector<double> cTs = cT;
+    Vec3 nu, omega;
+    if (n_tca > 0) {
+      Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
+      Eigen::MatrixXd G(n_tca, n_tca);
+      std::vector<int> act_of(n_tca);
+      for (int i = 0; i < n_act; ++i) {
+        if (unknown_of[i] >= 0) act_of[unknown_of[i] - 6] = i;
+      }
+      // Residuals g_k = T_k - F_k(delta_k(T)) of the closed-form model; F may throw.
+      auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
+        for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
+        closed_form_strains(cTs, nu, omega);
+        for (int k = 0; k < n_tca; ++k) {
+          const int i = act_of[k];
+          const rod::Routing& ro = model.actuators[i].routing;
+          const double delta =
+              L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
+          const tca::Tca& tca = *model.actuators[i].drive.tca;
+          const auto& segs = scaled_segments[i];
+          double F = 0.0, dF = 0.0;
+          if (segs.size() == 1) {
+            const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
+            F = ts.tension_N;
+            dF = ts.dF_ddelta_N_m;
+          } else {
+            const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
+            F = ts.tension_N;
+            dF = ts.dF_ddelta_N_m;
+          }
+          gk[k] = Tk[k] - F;
+          if (Gk) {
+            const Vec3 ri = ro.r(0.0);
+            for (int l = 0; l < n_tca; ++l) {
+              const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
+              // d delta_k / d T_l = -L C_kl c_l (closed form)
+              const double C = 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
+                               ri.x() * rl.x() / K_omega.y();
+              (*Gk)(k, l) = (k == l ? 1.0 : 0.0) + dF * L * C * count[act_of[l]];
+            }
+          }
+        }
+        return gk.allFinite();
+      };
+      bool ok = false;
+      try {
+        ok = eval(T, g, &G);
+        for (int it = 0; ok && it < 30 && g.lpNorm<Eigen::Infinity>() > 1e-12 * Fc; ++it) {
+          dT = G.partialPivLu().solve(-g);
+          double t = 1.0;
+          Eigen::VectorXd Tt(n_tca), gt(n_tca);
+          bool accepted = false;
+          for (int ls = 0; ls < 30 && !accepted; ++ls, t *= 0.5) {
+            Tt = T + t * dT;
+            try {
+              accepted = eval(Tt, gt, nullptr) && gt.squaredNorm() < g.squaredNorm();
+            } catch (const DomainError&) {
+              accepted = false;
+            }
+          }
+          if (!accepted) break;
+          T = Tt;
+          ok = eval(T, g, &G);
+        }
+      } catch (const DomainError&) {
+        ok = false;
+      }
+      if (ok && T.allFinite()) {
+        x.tail(n_tca) = T;
+      } else {
+        x.tail(n_tca).setZero();
+      }
+      for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * x[6 + k];
+    }
+    closed_form_strains(cTs, nu, omega);
+    x.head<3>() = nu;
+    x.segment<3>(3) = omega;
+    return x;
+  }
+
+  /// Damped Newton at load fraction lambda: the Jacobian (sensitivities or differences) is
+  /// computed at x when missing; after an accepted step it is Broyden-updated (trial points
+  /// cost one plain IVP) unless the step reduced ||r|| by less than kBroydenMinReduction
+  /// (then it is recomputed at the new point); a stale Jacobian gets kStaleLineSearchSteps
+  /// halvings before it is recomputed. x and J are in/out (J.size() == 0: no Jacobian yet).
+  Summary::Status newton(const Actuation& act, double lambda, Eigen::VectorXd& x,
+                         Eigen::MatrixXd& J, Summary& summary, std::string& why,
+                         double tolerance) {
+    Eigen::VectorXd r(nx), xt(nx), rt(nx), dx(nx);
+    bool below = false;
+    if (!residual(act, lambda, x, r, &below)) {
+      why = "the IVP or a TCA law failed at the initial guess";
+      return Summary::Status::kInitialPointFailed;
+    }
+    remember(lambda, x);
+    bool fresh = false;
+    if (J.rows() != nx || J.cols() != nx) J.resize(0, 0);
+    for (int it = 0;; ++it) {
+      summary.residual = r.lpNorm<Eigen::Infinity>();
+      summary.tca_below_closed_length = below;
+      if (summary.residual <= tolerance) return Summary::Status::kConverged;
+      if (it >= options.max_iterations) {
+        why = "reached max_iterations = " + std::to_string(options.max_iterations) +
+              " with scaled residual " + format_value(summary.residual);
+        return Summary::Status::kMaxIterations;
+      }
+      if (J.size() == 0) {
+        const bool ok = options.jacobian == JacobianMethod::kSensitivity
+                            ? residual_and_jacobian(act, lambda, x, r, J)
+                            : fd_jacobian(act, lambda, x, r, J);
+        if (!ok) {
+          why = "Jacobian evaluation failed (non-finite IVP)";
+          J.resize(0, 0);
+          return Summary::Status::kLineSearchFailed;
+        }
+        fresh = true;
+      }
+      dx = J.partialPivLu().solve(-r);
+      if (!dx.allFinite()) {
+        if (!fresh) { J.resize(0, 0); --it; continue; }
+        why = "singular shooting Jacobian";
+        return Summary::Status::kSingularJacobian;
+      }
+      const double phi = 0.5 * r.squaredNorm();
+      double t = 1.0;
+      bool accepted = false;
+      const int max_ls = fresh ? options.max_line_search_steps : kStaleLineSearchSteps;
+      for (int ls = 0; ls < max_ls; ++ls, t *= 0.5) {
+        xt = x + t * dx;
+        bool bt = false;
+        if (residual(act, lambda, xt, rt, &bt) &&
+            0.5 * rt.squaredNorm() <= (1.0 - 2.0 * kArmijo * t) * phi) {
+          accepted = true;
+          below = bt;
+          break;
+        }
+      }
+      if (!accepted) {
+        if (!fresh) { J.resize(0, 0); --it; continue; }  // retry with a fresh FD Jacobian
+        why = "line search found no decrease of ||r||^2 along the Newton direction";
+        return Summary::Status::kLineSearchFailed;
+      }
+      ++summary.iterations;
+      const bool poor = rt.norm() > kBroydenMinReduction * r.norm();
+      // A poor step with a fresh Jacobian: the map is far from linear here. Sensitivities
+      // are cheap enough to recompute; an FD Jacobian (nx IVPs) is Broyden-updated instead.
+      const bool fd = options.jacobian != JacobianMethod::kSensitivity;
+      if (options.broyden_updates && (!poor || (fresh && fd))) {
+        // Broyden's "good" update: J += (dr - J s) s^T / (s^T s).
+        const Eigen::VectorXd s = xt - x;
+        const double ss = s.squaredNorm();
+        if (ss > 0.0) J.noalias() += ((rt - r) - J * s) * (s.transpose() / ss);
+        fresh = false;
+      } else {
+        J.resize(0, 0);
+      }
+      x = xt;
+      r = rt;
+      remember(lambda, x);
+    }
+  }
+
+  /// Selects the coarse or the fine (Options::integrator) IVP level.
+  void use_level(bool coarse) {
+    active_plain = coarse ? &*coarse_integrator : &integrator;
+    active_sens = sens_integrator ? (coarse ? &*coarse_sens_integrator : &*sens_integrator) : nullptr;
+  }
+
+  void remember(double lambda, const Eigen::VectorXd& x) {
+    acc_full_load = lambda == 1.0 && active_plain == &integrator;
+    y_acc = y;
+    x_acc = x;
+  }
+
+  void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary) {
+    Eigen::VectorXd r;
+    sol.unknowns = x;
+    sol.tensions_N.assign(n_act, 0.0);
+    sol.elongations_m.assign(n_act, 0.0);
+    if (acc_full_load && x_acc.size() == x.size() && x_acc == x) {
+      set_parameters(act, 1.0, x);  // no IVP: y(L) of this point is known
+      y = y_acc;
+    } else if (!residual(act, 1.0, x, r)) {
+      // Only the last accepted point of a failed continuation can land here; keep finite zeros.
+      sol.tip_state.resize(0);
+      return;
+    }
+    sol.tip_state = y;
+    for (int i = 0; i < n_act; ++i) {
+      sol.tensions_N[i] = cT[i] / count[i];
+      sol.elongations_m[i] = y[kDelta + i];
+    }
+    // Global equilibrium (docs/conventions.md): n(0), m(0) against the applied loads.
+    const Mat3& R0 = model.R_WB0;
+    const Vec3 p0 = model.base_position_W_m;
+    const Vec3 n0 = R0 * K_nu.cwiseProduct(x.head<3>() - nu_star);
+    const Vec3 m0 = R0 * K_omega.cwiseProduct(x.segment<3>(3) - omega_star);
+    const Vec3 w = f_ext_W;
+    const Vec3 pL = y.segment<3>(kP);
+    const Vec3 c = y.segment<3>(kC);
+    Vec3 n_exp = act.tip_force_W_N + L * w;
+    Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(act.tip_force_W_N) + (c - L * p0).cross(w);
+    for (int i = 0; i < n_act; ++i) {
+      const rod::Routing& ro = model.actuators[i].routing;
+      const Vec3 r0 = ro.r(0.0);
+      const Vec3 t0 = R0 * (x.head<3>() + x.segment<3>(3).cross(r0) + ro.dr(0.0)).normalized();
+      n_exp -= cT[i] * t0;
+      m_exp -= (R0 * r0).cross(cT[i] * t0);
+    }
+    summary.force_imbalance_W_N = n0 - n_exp;
+    summary.moment_imbalance_W_Nm = m0 - m_exp;
+    if (!summary.force_imbalance_W_N.allFinite()) summary.force_imbalance_W_N.setZero();
+    if (!summary.moment_imbalance_W_Nm.allFinite()) summary.moment_imbalance_W_Nm.setZero();
+  }
+
+  Summary solve(const Actuation& act, Solution& sol) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Summary summary;
+    ivp_count = 0;
+    acc_full_load = false;
+    require(static_cast<int>(act.actuators.size()) == n_act, "actuation.actuators",
+            static_cast<double>(act.actuators.size()),
+            "must have one entry per model actuator (" + std::to_string(n_act) + ")");
+    for (int i = 0; i < n_act; ++i) {
+      if (unknown_of[i] >= 0) {
+        require(!act.actuators[i].segments.empty(),
+                "actuation.actuators[" + std::to_string(i) + "].segments", 0.0,
+                "must not be empty for a TCA drive");
+      }
+    }
+    auto done = [&](Summary::Status st, std::string why, const Eigen::VectorXd& x) {
+      summary.status = st;
+      summary.message = st == Summary::Status::kConverged ? std::string() : std::move(why);
+      finish(act, x, sol, summary);
+      sol.valid = st == Summary::Status::kConverged;
+      summary.ivp_count = ivp_count;
+      summary.wall_time_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      return summary;
+    };
+
+    if (model.tip_constraint) {
+      sol.jacobian.resize(0, 0);
+      return done(Summary::Status::kUnsupported, "tip_constraint is not supported by this solver yet",
+                  straight_guess(act, 1.0));
+    }
+
+    const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
+    Eigen::VectorXd x = warm ? sol.unknowns : straight_guess(act, 1.0);
+    Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
+    std::string why;
+    // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
+    // (cheap IVPs); its solution is within the coarse discretization error of the fine one.
+    // Warm: coarse-grid correction x = x_fine,old + (x_coarse,new - x_coarse,old), whose
+    // error is the change of the discretization error between the two actuations.
+    Eigen::VectorXd coarse_x;
+    Eigen::MatrixXd coarse_J;
+    if (coarse_integrator) {
+      const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
+                               sol.coarse_unknowns.allFinite();
+      if (!warm || warm_coarse) {
+        Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
+        Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
+                                                                       : Eigen::MatrixXd();
+        std::string coarse_why;
+        use_level(true);
+        const Summary::Status sc =
+            newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
+        use_level(false);
+        if (sc == Summary::Status::kConverged) {
+          if (warm) {
+            x += xc - sol.coarse_unknowns;
+          } else {
+            x = xc;
+            J = Jc;
+          }
+          coarse_x = xc;
+          coarse_J = Jc;
+        }
+      }
+    }
+    sol.coarse_unknowns = coarse_x;
+    sol.coarse_jacobian = coarse_J;
+    Summary::Status st = newton(act, 1.0, x, J, summary, why, options.tolerance);
+    if (st == Summary::Status::kConverged || !options.continuation) {
+      sol.jacobian = J;
+      return done(st, why, x);
+    }
+
+    // Continuation in the load fraction lambda, warm-starting each step (fine level only).
+    sol.coarse_unknowns.resize(0);
+    sol.coarse_jacobian.resize(0, 0);
+    const std::string direct_why = why;
+    double lambda = 0.0;
+    Eigen::VectorXd xc = straight_guess(act, 0.0);
+    Eigen::MatrixXd Jc;
+    st = newton(act, 0.0, xc, Jc, summary, why, options.tolerance);
+    if (st != Summary::Status::kConverged) {
+      sol.jacobian.resize(0, 0);
+      return done(st, "direct solve: " + direct_why + "; unloaded solve: " + why, xc);
+    }
+    double step = 0.5;
+    while (lambda < 1.0) {
+      const double lt = std::min(1.0, lambda + step);
+      Eigen::VectorXd xt = xc;
+      Eigen::MatrixXd Jt = Jc;
+      st = newton(act, lt, xt, Jt, summary, why, options.tolerance);
+      if (st == Summary::Status::kConverged) {
+        lambda = lt;
+        xc = xt;
+        Jc = Jt;
+        ++summary.continuation_steps;
+        step = std::min(2.0 * step, 1.0 - lambda);  // never retry a failed target
+      } else {
+        step *= 0.5;
+        if (step < options.min_continuation_step) {
+          sol.jacobian.resize(0, 0);
+          // Report the residual at the full load for the returned point.
+          Eigen::VectorXd r;
+          summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>() : 0.0;
+          return done(Summary::Status::kContinuationFailed,
+                      "continuation stalled at load fraction " + format_value(lambda) +
+                          " (step < " + format_value(options.min_continuation_step) +
+                          "): " + why,
+                      xc);
+        }
+      }
+    }
+    sol.jacobian = Jc;
+    return done(Summary::Status::kConverged, "", xc);
+  }
+
+  rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary) {
+    rod::Result res;
+    res.scenario = model.name;
+    res.method = "cosserat";
+    if (options.integrator.method == ode::Method::kRk4) {
+      res.discretization = {{"steps", static_cast<double>(options.integrator.steps)}};
+    } else {
+      res.discretization = {{"rtol", options.integrator.relative_tolerance}};
+    }
+    res.converged = summary.converged();
+    res.iterations = summary.iterations;
+    res.residual = std::isfinite(summary.residual) ? summary.residual : 0.0;
+    res.wall_time_s = summary.wall_time_s;
+    res.message = summary.message;
+    res.actuators.resize(n_act);
+    for (int i = 0; i < n_act; ++i) res.actuators[i].name = model.actuators[i].name;
+
+    if (sol.unknowns.size() != nx || !sol.unknowns.allFinite()) {
+      res.converged = false;
+      if (res.message.empty()) res.message = "no solution to report";
+      return res;
+    }
+    if (!output_integrator) {
+      ode::IntegratorOptions io = options.integrator;
+      io.output_intervals = options.centerline_intervals;
+      if (io.method == ode::Method::kCvode && io.output_intervals == 0) io.output_intervals = 64;
+      output_integrator.emplace(dim, io);
+    }
+    set_parameters(act, 1.0, sol.unknowns);
+    initial_state(sol.unknowns, y);
+    auto observer = [&res](double s, const Eigen::VectorXd& yy) {
+      res.centerline_s_m.push_back(s);
+      res.centerline_p_W_m.push_back(yy.segment<3>(kP));
+      res.centerline_R_WB.push_back(Eigen::Map<const Mat3>(yy.data() + kR));
+    };
+    const ode::IntegrationSummary is = output_integrator->integrate(rhs, 0.0, L, y, observer);
+    if (is.status != ode::IntegrationSummary::Status::kSuccess || !y.allFinite()) {
+      res.converged = false;
+      res.message = "IVP failed while sampling the solution";
+      res.centerline_s_m.clear();
+      res.centerline_p_W_m.clear();
+      res.centerline_R_WB.clear();
+      return res;
+    }
+    res.tip_position_W_m = y.segment<3>(kP);
+    res.tip_R_WB = Eigen::Map<const Mat3>(y.data() + kR);
+    for (int i = 0; i < n_act; ++i) {
+      res.actuators[i].tension_N = cT[i] / count[i];
+      res.actuators[i].elongation_m = y[kDelta + i];
+    }
+    try {
+      res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
+                                                           res.centerline_p_W_m, res.centerline_R_WB);
+    } catch (const DomainError&) {
+      res.bending_radius_m.reset();
+    }
+    return res;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+ShootingSolver::ShootingSolver(const rod::RodModel& model, const Options& options)
+    : impl_(std::make_unique<Impl>(model, options)) {}
+ShootingSolver::~ShootingSolver() = default;
+ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
+
+Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
+  return impl_->solve(actuation, solution);
+}
+
+rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
+                                        const Summary& summary) {
+  return impl_->make_result(actuation, solution, summary);
+}
+
+bool ShootingSolver::residual(const Actuation& actuation, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& r) {
+  return impl_->residual(actuation, 1.0, x, r);
+}
+
+bool ShootingSolver::jacobian(const Actuation& actuation, const Eigen::VectorXd& x,
+                              Eigen::MatrixXd& J) {
+  Eigen::VectorXd r0;
+  if (impl_->options.jacobian == JacobianMethod::kSensitivity) {
+    return impl_->residual_and_jacobian(actuation, 1.0, x, r0, J);
+  }
+  if (!impl_->residual(actuation, 1.0, x, r0)) return false;
+  return impl_->fd_jacobian(actuation, 1.0, x, r0, J);
+}
+
+int ShootingSolver::unknown_count() const { return impl_->nx; }
+double ShootingSolver::characteristic_force_N() const { return impl_->Fc; }
+const Options& ShootingSolver::options() const { return impl_->options; }
+
+rod::Result solve(const rod::RodModel& model, const Options& options) {
+  ShootingSolver solver(model, options);
+  const Actuation act = Actuation::from_model(model);
+  Solution sol;
+  const Summary summary = solver.solve(act, sol);
+  return solver.make_result(act, sol, summary);
+}
+
+}  // namespace tcasim::cosserat

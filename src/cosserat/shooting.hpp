@@ -1,0 +1,186 @@
+#pragma once
+/// Forward kinetostatics of a Cosserat rod with string actuators by shooting
+/// ([Pawlowski2019] Section III, with the corrected equations of docs/conventions.md).
+///
+/// IVP state (dimension 21 + n_actuators), all in SI:
+///   y = ( p_W [0,3), R_WB [3,12) column-major (y[3 + 3 j + i] = R(i, j)),
+///         nu_B [12,15), omega_B [15,18), c_W = int_0^s p_W ds [18,21) (for the global
+///         equilibrium check), delta_i [21, 21 + n_actuators) (one per actuator) ).
+/// Unknowns x = ( nu_B(0) 3, omega_B(0) 3, T_i for each TCA-driven actuator in model
+/// order ); tension-driven actuators have known tensions.
+/// Residual r(x) (docs/conventions.md "Tip conditions"), scaled:
+///   r[0:3] = ( K_nu (nu(L) - nu*) - R^T F_e + sum c_i T_i qh_i ) / F_c
+///   r[3:6] = ( K_omega (omega(L) - omega*) - R^T M_e + sum c_i T_i r_i x qh_i ) / (F_c L)
+///   r[6+k] = ( T_k - F_tca(delta_k(L), temperatures_k) ) / F_c
+/// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, kStiffnessFloor max(GA, EA))
+/// (see shooting.cpp for the floor's reason). Convergence: ||r||_inf <= Options::tolerance.
+/// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
+/// DomainError at a trial point is a failed trial (the line search backs off).
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/ode.hpp"
+#include "rod/model.hpp"
+#include "rod/result.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::cosserat {
+
+/// Actuation of one actuator: which field is read depends on the model's drive type.
+struct ActuatorDrive {
+  double tension_N = 0.0;               ///< tension drive: tension of one string (positive = tensile)
+  std::vector<tca::Segment> segments;   ///< TCA drive: segment fractions and temperatures [K]
+};
+
+/// Everything a sweep or an inverse solver may change without rebuilding the model.
+struct Actuation {
+  std::vector<ActuatorDrive> actuators;  ///< one per model actuator, in model order
+  Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();    ///< applied to the rod at the tip
+  Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();  ///< applied to the rod at the tip
+  Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
+
+  /// The actuation the model file describes.
+  static Actuation from_model(const rod::RodModel& model);
+  /// Sets every segment of TCA actuator `index` to temperature t_K.
+  void set_temperature_K(std::size_t index, double t_K);
+};
+
+/// How the shooting Jacobian dr/dx is obtained.
+enum class JacobianMethod {
+  /// Forward sensitivities dy/dx integrated with the state (variational equations, one
+  /// augmented IVP of dimension dim (1 + nx)): the exact derivative of the discrete
+  /// (RK4) residual map; to the integration tolerance with CVODE. Models with more than
+  /// 10 TCA drives fall back to kForwardDifference.
+  kSensitivity,
+  /// Forward differences, step h_j = sqrt(eps) max(|x_j|, typical_j): error O(h_j),
+  /// about 1e-8 relative (one IVP per unknown).
+  kForwardDifference,
+  /// Central differences, step h_j = eps^(1/3) max(|x_j|, typical_j): error O(h_j^2),
+  /// about 1e-10 relative (two IVPs per unknown).
+  kCentralDifference,
+};
+
+/// Solver options (validated by ShootingSolver's constructor: InputError naming the field).
+struct Options {
+  /// IVP integrator: kRk4 with `steps` (even, so a node lies at L/2) or kCvode with
+  /// `relative_tolerance`. output_intervals is ignored (set by the solver).
+  ode::IntegratorOptions integrator;
+  /// Converged when the scaled residual satisfies ||r||_inf <= tolerance.
+  double tolerance = 1e-10;
+  int max_iterations = 50;          ///< Newton iterations per solve (per continuation step)
+  int max_line_search_steps = 12;   ///< backtracking halvings per Newton iteration (t >= 2^-11)
+  JacobianMethod jacobian = JacobianMethod::kSensitivity;
+  /// Finite-difference Jacobians only: after the first one, update it with Broyden's rank-one
+  /// formula on accepted steps; a stalled line search recomputes it by differences.
+  bool broyden_updates = true;
+  /// Retry a failed solve by continuation in the actuation (see ShootingSolver::solve).
+  bool continuation = true;
+  /// Smallest continuation step in the load fraction before giving up.
+  double min_continuation_step = 1.0 / 1024.0;
+  /// Two-level solve with kRk4: a coarse problem with this many RK4 steps is converged
+  /// first (to a scaled residual of 1e-9); a cold start then refines its solution with
+  /// `integrator.steps`, a warm start adds the coarse solution's change to the previous
+  /// fine solution. 0 disables (also when steps < 2 x this). Only the starting point
+  /// changes: convergence is always tested on the fine problem.
+  int coarse_steps = 4;
+  /// Centerline samples in results: 0 = every RK4 step node (64 intervals with CVODE);
+  /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4).
+  int centerline_intervals = 0;
+};
+
+/// Outcome of one solve.
+struct Summary {
+  enum class Status {
+    kConverged,          ///< ||r_scaled||_inf <= Options::tolerance
+    kMaxIterations,      ///< max_iterations Newton steps done with ||r_scaled||_inf > tolerance
+    kLineSearchFailed,   ///< max_line_search_steps halvings of the Newton step with a
+                         ///< freshly computed Jacobian gave no Armijo decrease of
+                         ///< ||r_scaled||^2 (or that Jacobian's IVP failed)
+    kSingularJacobian,   ///< a freshly computed Jacobian's LU gave a non-finite step
+    kContinuationFailed, ///< the direct solve failed and the continuation step fell below
+                         ///< Options::min_continuation_step (or the unloaded solve failed)
+    kInitialPointFailed, ///< the IVP or a TCA law failed at the initial guess
+    kUnsupported,        ///< the model asks for something this solver does not do
+  };
+  Status status = Status::kInitialPointFailed;
+  int iterations = 0;          ///< Newton iterations over all continuation steps
+  int ivp_count = 0;           ///< IVP integrations (all levels; an augmented sensitivity
+                               ///< IVP counts once, an FD Jacobian nx times)
+  int continuation_steps = 0;  ///< 0 when the direct solve converged
+  double residual = 0.0;       ///< ||r_scaled||_inf at the returned point (finite)
+  double wall_time_s = 0.0;
+  std::string message;         ///< empty when converged
+  /// Global equilibrium: n(0) and m(0) (about p(0)) minus what the applied loads
+  /// (gravity, tip wrench, string terminations) require [N], [N m], world frame.
+  Eigen::Vector3d force_imbalance_W_N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment_imbalance_W_Nm = Eigen::Vector3d::Zero();
+  /// True if an extension TCA ended below its closed length (delta < 0): the free-coil
+  /// law was extrapolated there (coil contact is not modelled by this solver).
+  bool tca_below_closed_length = false;
+
+  bool converged() const { return status == Status::kConverged; }
+};
+
+const char* to_string(Summary::Status s);
+
+/// A solution (or a starting guess): unknowns and what warm starts reuse.
+struct Solution {
+  bool valid = false;          ///< false: solve starts from the straight guess
+  Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca...)
+  Eigen::MatrixXd jacobian;    ///< d r_scaled / d x at (or near) `unknowns`; may be empty
+  Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP
+  /// Solution and Jacobian of the coarse level (Options::coarse_steps), for warm starts.
+  Eigen::VectorXd coarse_unknowns;
+  Eigen::MatrixXd coarse_jacobian;
+  std::vector<double> tensions_N;     ///< per actuator (one string)
+  std::vector<double> elongations_m;  ///< per actuator (one string)
+};
+
+/// Shooting solver for one model. Holds a reference to the (constant) model, the
+/// integrator and work buffers; not thread-safe, cheap to reuse across solves.
+class ShootingSolver {
+ public:
+  /// Validates options; the model must outlive the solver.
+  ShootingSolver(const rod::RodModel& model, const Options& options);
+  ~ShootingSolver();
+  ShootingSolver(ShootingSolver&&) noexcept;
+  ShootingSolver& operator=(ShootingSolver&&) = delete;
+  ShootingSolver(const ShootingSolver&) = delete;
+  ShootingSolver& operator=(const ShootingSolver&) = delete;
+
+  /// Solves the BVP for `actuation`. If `solution.valid`, starts from it (warm start,
+  /// reusing its Jacobian); else from the straight guess (nu = nu* with the closed-form
+  /// axial strain and curvature of the known tensions, omega = omega* + that, T_tca = 0).
+  /// If that fails and Options::continuation, it steps the load fraction lambda from 0 to 1
+  /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))
+  /// warm-starting each step, doubling the step after a success and halving it after a
+  /// failure. On return `solution` holds the last accepted (finite) point.
+  Summary solve(const Actuation& actuation, Solution& solution);
+
+  /// Integrates the solution once more with output and fills a result (tip pose,
+  /// actuators, centerline samples, bending radius, summary fields, discretization).
+  rod::Result make_result(const Actuation& actuation, const Solution& solution,
+                          const Summary& summary);
+
+  /// Scaled residual at x (for tests); returns false if the IVP or a TCA law failed.
+  bool residual(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  /// Jacobian of the scaled residual at x by Options::jacobian (for tests); false on failure.
+  bool jacobian(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
+
+  /// Number of unknowns (6 + TCA-driven actuators).
+  int unknown_count() const;
+  /// Characteristic force F_c [N] of the residual scaling.
+  double characteristic_force_N() const;
+  const Options& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Convenience: solves the model's own actuation and returns the result.
+rod::Result solve(const rod::RodModel& model, const Options& options);
+
+}  // namespace tcasim::cosserat
