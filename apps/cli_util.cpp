@@ -1,9 +1,13 @@
 #include "apps/cli_util.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <iostream>
 
 #include "common/error.hpp"
+#include "common/grid.hpp"
+#include "rod/scenario.hpp"
 
 namespace tcasim::app {
 
@@ -39,13 +43,37 @@ std::vector<double> parse_range(const std::string& text, const std::string& flag
   const double a = parse_number(parts[0], flag, text);
   const double b = parse_number(parts[1], flag, text);
   const double step = parse_number(parts[2], flag, text);
-  if (!(step > 0.0)) throw InputError(flag, text, "must have a step > 0");
-  if (b < a) throw InputError(flag, text, "must have STOP >= START");
-  const double count = std::floor((b - a) / step + 1e-9);
-  if (count > 1e6) throw InputError(flag, text, "has more than a million points");
-  std::vector<double> values;
-  for (int k = 0; k <= static_cast<int>(count); ++k) values.push_back(a + k * step);
-  return values;
+  return inclusive_grid(a, b, step, flag);
+}
+
+std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
+                                           const std::string& material_name,
+                                           const std::string& f12_form) {
+  const auto tcas = rod::read_tcas(file);
+  std::string ids;
+  for (const auto& [name, t] : tcas) ids += (ids.empty() ? "" : ", ") + name;
+  std::shared_ptr<const tca::Tca> chosen;
+  if (id.empty()) {
+    require(tcas.size() == 1, "--tca", "(missing)",
+            fmt::format("is required: {} defines {} TCAs: {}", file, tcas.size(), ids));
+    chosen = tcas.begin()->second;
+  } else {
+    const auto it = tcas.find(id);
+    require(it != tcas.end(), "--tca", id, fmt::format("is not a TCA of {} (it has: {})", file, ids));
+    chosen = it->second;
+  }
+  if (material_name.empty() && f12_form.empty()) return chosen;
+  tca::Parameters p = chosen->parameters();
+  tca::Material m = chosen->material();
+  if (!material_name.empty()) {
+    m = rod::load_material(material_name, "--material");
+    // Without an explicit form, the overriding material's own form applies (as in a file).
+    if (f12_form.empty() && m.f12_form) p.f12_form = *m.f12_form;
+  }
+  if (!f12_form.empty()) {
+    p.f12_form = f12_form == "paper" ? tca::F12Form::kPaper : tca::F12Form::kCastigliano;
+  }
+  return std::make_shared<const tca::Tca>(p, std::move(m));
 }
 
 Output::Output(const std::string& path) {

@@ -6,12 +6,19 @@
 #include <string>
 #include <vector>
 
+#include "tca/tca.hpp"
+
 namespace tcasim::app {
 
-/// Parses "A:B:S" (start, stop, step; stop included when reached within 1e-9 of a step)
-/// or a single value "A". `flag` names the option in error messages; step must be > 0
-/// and B >= A.
+/// Parses "A:B:S" (start, stop, step; the inclusive grid of common/grid.hpp) or a single
+/// value "A". `flag` names the option in error messages.
 std::vector<double> parse_range(const std::string& text, const std::string& flag);
+
+/// Picks one TCA of a scenario or TCA file (`--tca` id, required when the file has several),
+/// applying the optional material and f12-form overrides. Throws InputError naming the flag.
+std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
+                                           const std::string& material_name,
+                                           const std::string& f12_form);
 
 /// An output stream: the file at `path`, or stdout when path is empty or "-".
 class Output {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
@@ -17,11 +18,6 @@
 #include "tca/tca.hpp"
 
 namespace tcasim::app {
-
-// Defined in cmd_tca.cpp: picks one TCA of a file with optional overrides.
-std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
-                                           const std::string& material_name,
-                                           const std::string& f12_form);
 
 namespace {
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
@@ -22,71 +23,7 @@
 
 namespace tcasim::app {
 
-/// Picks one TCA of a scenario or TCA file (shared with `tcasim fit`), applying the
-/// optional material and f12-form overrides. Throws InputError naming the flag.
-std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
-                                           const std::string& material_name,
-                                           const std::string& f12_form) {
-  const auto tcas = rod::read_tcas(file);
-  std::string ids;
-  for (const auto& [name, t] : tcas) ids += (ids.empty() ? "" : ", ") + name;
-  std::shared_ptr<const tca::Tca> chosen;
-  if (id.empty()) {
-    require(tcas.size() == 1, "--tca", "(missing)",
-            fmt::format("is required: {} defines {} TCAs: {}", file, tcas.size(), ids));
-    chosen = tcas.begin()->second;
-  } else {
-    const auto it = tcas.find(id);
-    require(it != tcas.end(), "--tca", id, fmt::format("is not a TCA of {} (it has: {})", file, ids));
-    chosen = it->second;
-  }
-  if (material_name.empty() && f12_form.empty()) return chosen;
-  tca::Parameters p = chosen->parameters();
-  tca::Material m = chosen->material();
-  if (!material_name.empty()) {
-    m = rod::load_material(material_name, "--material");
-    // Without an explicit form, the overriding material's own form applies (as in a file).
-    if (f12_form.empty() && m.f12_form) p.f12_form = *m.f12_form;
-  }
-  if (!f12_form.empty()) {
-    p.f12_form = f12_form == "paper" ? tca::F12Form::kPaper : tca::F12Form::kCastigliano;
-  }
-  return std::make_shared<const tca::Tca>(p, std::move(m));
-}
-
 namespace {
-
-/// Parses "A:B:S" (inclusive grid) or "A" [degC].
-std::vector<double> parse_temperatures_degC(const std::string& text) {
-  constexpr const char* kKey = "--temperatures-degC";
-  std::vector<double> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t colon = text.find(':', start);
-    const std::string piece = text.substr(start, colon == std::string::npos ? std::string::npos
-                                                                            : colon - start);
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(piece, &used);
-    } catch (const std::exception&) {
-      used = std::string::npos;
-    }
-    require(used == piece.size() && !piece.empty(), kKey, text,
-            "must be START:STOP:STEP or a single temperature, in degC");
-    parts.push_back(v);
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
-  require(parts.size() == 1 || parts.size() == 3, kKey, text,
-          "must be START:STOP:STEP or a single temperature, in degC");
-  const std::vector<double> degC =
-      parts.size() == 1 ? parts : tca::temperature_grid(parts[0], parts[1], parts[2], kKey);
-  for (const double t : degC) {
-    require(t > -units::kZeroCelsius_K, kKey, text, "contains a temperature below absolute zero");
-  }
-  return degC;
-}
 
 struct TcaOptions {
   std::string file, id, material, f12_form, out, temperatures;
@@ -98,7 +35,11 @@ void run_tca(const TcaOptions& o) {
   require(o.tension_N.has_value() || o.load_g.has_value(), "--tension-N", "(missing)",
           "is required unless --load-g is given (give exactly one)");
   const auto tca = select_tca(o.file, o.id, o.material, o.f12_form);
-  const std::vector<double> temps_degC = parse_temperatures_degC(o.temperatures);
+  const std::vector<double> temps_degC = parse_range(o.temperatures, "--temperatures-degC");
+  for (const double t : temps_degC) {
+    require(t > -units::kZeroCelsius_K, "--temperatures-degC", o.temperatures,
+            "contains a temperature below absolute zero");
+  }
   std::vector<double> temps_K;
   for (const double t : temps_degC) temps_K.push_back(units::degC_to_K(t));
   double tension_N = 0.0;
@@ -110,12 +51,8 @@ void run_tca(const TcaOptions& o) {
   }
   const auto curve = tca::elongation_curve(*tca, tension_N, temps_K);
 
-  std::ofstream file;
-  if (!o.out.empty()) {
-    file.open(o.out);
-    require(static_cast<bool>(file), "--out", o.out, "cannot be opened for writing");
-  }
-  std::ostream& out = o.out.empty() ? std::cout : file;
+  Output output(o.out);
+  std::ostream& out = output.stream();
   fmt::print(out, "temperature_degC,elongation_m,tension_N,pitch_angle_deg,coils_closed\n");
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const tca::CurvePoint& p = curve[i];

@@ -21,10 +21,6 @@ struct CurvePoint {
 std::vector<CurvePoint> elongation_curve(const Tca& tca, double tension_N,
                                          const std::vector<double>& temperatures_K);
 
-/// Temperatures lo, lo + step, ..., up to hi (included when within step/1e6 of the grid).
-/// Throws InputError(key, ...) unless step > 0 and lo <= hi.
-std::vector<double> temperature_grid(double lo, double hi, double step, const char* key);
-
 /// The tension of a hanging mass m [kg] on a TCA that it compresses: F = -m g.
 double hanging_load_tension_N(double mass_kg);
 

@@ -395,14 +395,7 @@ TEST(TcaRejects, OutOfDomainStatesThrowDomainError) {
   EXPECT_NO_THROW((void)weak.tension(0.0, K(90.0)));
 }
 
-TEST(TcaCurve, TemperatureGridIncludesEndPointAndRejectsBadSteps) {
-  const auto g = temperature_grid(25.0, 160.0, 5.0, "--temperatures-degC");
-  ASSERT_EQ(g.size(), 28u);
-  EXPECT_EQ(g.front(), 25.0);
-  EXPECT_EQ(g.back(), 160.0);
-  EXPECT_EQ(temperature_grid(0.0, 0.3, 0.1, "x").size(), 4u);
-  EXPECT_THROW((void)temperature_grid(25.0, 160.0, 0.0, "x"), InputError);
-  EXPECT_THROW((void)temperature_grid(160.0, 25.0, 5.0, "x"), InputError);
+TEST(TcaCurve, HangingMassCompressesTheTca) {
   EXPECT_DOUBLE_EQ(hanging_load_tension_N(0.010), -0.0980665);
 }
 

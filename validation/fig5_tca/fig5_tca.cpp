@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/grid.hpp"
 #include "common/units.hpp"
 #include "rod/scenario.hpp"
 #include "tca/curve.hpp"
@@ -149,7 +150,7 @@ int run(int argc, char** argv) {
   fmt::print("Step 3: elongation curves, {}..{} degC step {} degC\n", t_lo_degC, t_hi_degC,
              step_degC);
   const std::vector<double> temps_degC =
-      tca::temperature_grid(t_lo_degC, t_hi_degC, step_degC, "grid");
+      inclusive_grid(t_lo_degC, t_hi_degC, step_degC, "grid");
   std::vector<double> temps_K;
   for (const double t : temps_degC) temps_K.push_back(units::degC_to_K(t));
   std::vector<Case> cases;
