@@ -11,6 +11,7 @@
 
 #include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
+#include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
@@ -52,22 +53,62 @@ cosserat::Options cosserat_options(const IntegratorFlags& f) {
   return o;
 }
 
+struct FeFlags {
+  int elements = 16;
+  int order = 2;
+  std::string integration = "reduced";
+  std::string linear_solver = "klu";
+};
+
+void add_fe_flags(CLI::App* cmd, FeFlags& f) {
+  cmd->add_option("--elements", f.elements, "fe: number of elements (>= 1; default 16)");
+  cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)");
+  cmd->add_option("--integration", f.integration,
+                  "fe: Gauss rule, reduced (default, no locking) or full");
+  cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
+}
+
+beam_fe::Options fe_options(const FeFlags& f) {
+  beam_fe::Options o;
+  o.elements = f.elements;
+  o.order = f.order;
+  o.integration = beam_fe::parse_integration(f.integration);
+  o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
+  return o;
+}
+
+/// Solves the model's own actuation with the chosen method.
+rod::Result solve_with(const rod::RodModel& model, const std::string& method,
+                       const IntegratorFlags& integrator, const FeFlags& fe) {
+  if (method == "fe") {
+    const beam_fe::Options options = fe_options(fe);
+    beam_fe::State state;
+    const beam_fe::Summary summary = beam_fe::solve(model, options, state);
+    return beam_fe::make_result(model, options, state, summary);
+  }
+  return cosserat::solve(model, cosserat_options(integrator));
+}
+
 }  // namespace
 
 void add_solve_command(CLI::App& app) {
   struct Flags {
     std::string scenario, method = "cosserat", out;
     IntegratorFlags integrator;
+    FeFlags fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("solve", "Forward kinetostatics: solve one scenario and write a result file");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  cmd->add_option("--method", flags->method, "solver")->check(CLI::IsMember({"cosserat"}));
+  cmd->add_option("--method", flags->method,
+                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)")
+      ->check(CLI::IsMember({"cosserat", "fe"}));
   add_integrator_flags(cmd, flags->integrator);
+  add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "result file (default: stdout)");
   cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
-    const rod::Result result = cosserat::solve(model, cosserat_options(flags->integrator));
+    const rod::Result result = solve_with(model, flags->method, flags->integrator, flags->fe);
     rod::write_result(result, flags->out);
     if (!result.converged) {
       fmt::print(stderr, "tcasim solve: not converged: {}\n", result.message);

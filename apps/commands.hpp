@@ -11,7 +11,7 @@ void add_tca_command(CLI::App& app);
 /// `tcasim fit ...`: calibration of TCA material parameters to measured curves.
 void add_fit_command(CLI::App& app);
 
-/// `tcasim solve SCENARIO [--method cosserat] [--steps N | --rtol X] [--out F]`
+/// `tcasim solve SCENARIO [--method cosserat|fe] [--steps N | --rtol X] [--elements N --order 1|2] [--out F]`
 void add_solve_command(CLI::App& app);
 /// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S)`
 void add_sweep_command(CLI::App& app);

@@ -1,0 +1,194 @@
+#pragma once
+/// Geometrically exact (Simo-Reissner) beam finite elements with embedded string
+/// actuators: the same continuum problem as the Cosserat shooting solver
+/// (docs/conventions.md), discretized in a total-Lagrangian form.
+///
+/// Element: Lagrange interpolation of order 1 or 2 of the centerline p_W; nodal triads
+/// R_WB as unit quaternions; rotations interpolated objectively and path-independently
+/// [Crisfield1999], [Jelenic1999]: with a reference node triad R_r (node 0 for order 1, the
+/// middle node for order 2), local rotation vectors psi_a = log(R_r^T R_a) are
+/// interpolated, R(s) = R_r exp(psi(s)). Strains nu_B = R^T p', omega_B = Jr(psi) psi'.
+/// Nodal increments are material: R_a <- R_a exp(dtheta_a), p_a <- p_a + dp_a.
+///
+/// Strings enter as an internal potential c_i T_i l_i(q), l_i = int_0^L |q_i| ds with
+/// q_i = nu + omega x r_i + r_i' at the quadrature points; a TCA drive adds its tension
+/// as a global unknown with the residual T_i - F_tca(l_i - rest_length_i, temperatures)
+/// (bordered system). Gravity and the tip force are dead loads; the tip moment is fixed in
+/// the world frame (virtual work M_e . dtheta_W, i.e. m(L) = M_e as in the shooting solver).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "rod/model.hpp"
+#include "rod/result.hpp"
+
+namespace tcasim::beam_fe {
+
+/// Gauss rule per element.
+enum class Integration {
+  kReduced,  ///< p Gauss points for order p (1 for linear, 2 for quadratic): no locking
+  kFull,     ///< p + 1 Gauss points (2 for linear, 3 for quadratic): locks on slender rods
+};
+
+/// Sparse direct solver for the (non-symmetric) Newton systems.
+enum class LinearSolver { kKlu, kUmfpack, kSparseLu };
+
+/// Discretization and solver settings.
+struct Options {
+  int elements = 16;                           ///< number of elements, >= 1
+  int order = 2;                               ///< Lagrange order, 1 or 2
+  Integration integration = Integration::kReduced;
+  LinearSolver linear_solver = LinearSolver::kKlu;
+  double tolerance_abs = 1e-12;   ///< absolute residual tolerance [N, N m]
+  double tolerance_rel = 1e-10;   ///< relative to the load scale (see Summary::Status)
+  int max_iterations = 30;        ///< Newton iterations (linear solves) per load step
+  int max_load_steps = 200;       ///< load-step attempts (accepted + rejected)
+  double initial_load_step = 1.0; ///< first load-factor increment in (0, 1]
+  double min_load_step = 1e-6;    ///< give up when a halved increment falls below this
+};
+
+/// Configuration of the mesh: nodal positions, triads and string tensions.
+struct State {
+  std::vector<double> s_m;                  ///< reference arc length of each node
+  std::vector<Eigen::Vector3d> p_W_m;       ///< nodal centerline positions
+  std::vector<Eigen::Quaterniond> q_WB;     ///< nodal triads (unit quaternions)
+  std::vector<double> tensions_N;           ///< per actuator, tension of one string
+  double load_factor = 0.0;                 ///< lambda of the last accepted load step
+};
+
+/// Outcome of a solve.
+struct Summary {
+  enum class Status {
+    /// At load factor 1, every residual row |r_i| <= tolerance_abs + tolerance_rel * scale
+    /// + floor_i, where r holds nodal forces [N], moments [N m] and TCA rows T_i - F_tca
+    /// [N]; scale = max(||f_ext||_inf, max_i c_i |T_i|) (external nodal loads incl. the tip
+    /// moment); floor_i is the round-off level of the row (Discretization::round_off_floor:
+    /// 10 eps nodes max(EA, GA) for force and TCA rows, 10 eps nodes max(EI, GJ)/L plus
+    /// that times h for moment rows).
+    kConverged,
+    kStepTooSmall,       ///< a load increment halved below Options::min_load_step failed
+    kLoadStepLimit,      ///< Options::max_load_steps attempts without reaching lambda = 1
+    kNotSupported,       ///< the model asks for something this solver cannot do
+  };
+  Status status = Status::kStepTooSmall;
+  bool converged() const { return status == Status::kConverged; }
+  int load_steps = 0;          ///< accepted load steps
+  int rejected_steps = 0;      ///< failed (halved) load steps
+  int iterations = 0;          ///< Newton iterations (linear solves), all steps
+  double residual_inf = 0.0;   ///< ||r||_inf of the returned state
+  double residual_scale = 0.0; ///< scale of the relative tolerance
+  double load_factor = 0.0;    ///< lambda reached
+  double wall_time_s = 0.0;
+  std::string message;         ///< why it stopped (empty when converged)
+};
+
+/// Element-level quantities (for tests): residual and consistent tangent in the
+/// element's nodal increments (dp_a, dtheta_a) per node, strings at fixed tensions.
+struct ElementEvaluation {
+  Eigen::VectorXd residual;              ///< 6 (order + 1)
+  Eigen::MatrixXd tangent;               ///< d residual / d increments
+  std::vector<double> lengths_m;         ///< element share of each string length
+  std::vector<Eigen::VectorXd> length_gradients;  ///< d l_i / d increments
+};
+
+/// Strains at a quadrature point (for tests and post-processing).
+struct PointStrain {
+  double s_m;
+  Eigen::Vector3d nu_B;
+  Eigen::Vector3d omega_B;
+};
+
+/// The discrete problem: mesh, degrees of freedom, residual and tangent. Keeps a pointer to
+/// the model (which must outlive it) and caches the tangent's pattern slots (not thread-safe).
+class Discretization {
+ public:
+  /// Validates the options (InputError naming `elements`, `order`, ...).
+  Discretization(const rod::RodModel& model, const Options& options);
+
+  int element_count() const { return elements_; }
+  int order() const { return order_; }
+  int node_count() const { return elements_ * order_ + 1; }
+  /// Unknowns: 6 per free node (the base node is clamped), then one per TCA actuator.
+  int dof_count() const { return 6 * (node_count() - 1) + static_cast<int>(tca_actuators_.size()); }
+  const rod::RodModel& model() const { return *model_; }
+
+  /// The stress-free reference configuration (exact arc of constant omega*), tensions 0.
+  State reference_state() const;
+
+  /// Residual at load factor lambda (and the tangent when `tangent` is non-null; its
+  /// sparsity pattern is the same on every call).
+  Eigen::VectorXd residual(const State& state, double lambda,
+                           Eigen::SparseMatrix<double>* tangent = nullptr) const;
+
+  /// Applies an increment dx (dof_count) to a state: p += dp, R <- R exp(dtheta), T += dT.
+  void retract(State& state, const Eigen::VectorXd& dx) const;
+
+  /// One element with string tensions `tensions_N` (per actuator, one string).
+  ElementEvaluation element(const State& state, int e, const std::vector<double>& tensions_N) const;
+
+  /// Current length of one string of each actuator [m].
+  std::vector<double> string_lengths(const State& state) const;
+
+  /// Strains at every quadrature point.
+  std::vector<PointStrain> strains(const State& state) const;
+
+  /// Scale of the relative tolerance at lambda: max(||f_ext||_inf, max_i c_i |T_i|).
+  double residual_scale(const State& state, double lambda) const;
+
+  /// Round-off level of the residual rows: force rows (and TCA rows) [N], moment rows [N m].
+  struct Floor {
+    double force, moment;
+  };
+  /// force = 10 eps nodes max(EA, GA); moment = 10 eps nodes max(EI, GJ)/L + force h.
+  Floor round_off_floor() const;
+
+  /// The convergence test of Summary::Status::kConverged, row by row.
+  bool within_tolerance(const Eigen::VectorXd& r, const State& state, double lambda,
+                        const Options& options) const;
+
+  /// Sets the tensions of tension drives to lambda times their value.
+  void apply_prescribed_tensions(State& state, double lambda) const;
+
+ private:
+  struct Quadrature {
+    std::vector<double> xi, weight;
+  };
+  const rod::RodModel* model_;
+  int elements_, order_;
+  double h_m_;
+  Quadrature quad_;
+  std::vector<int> tca_actuators_;  // actuator index of each TCA unknown
+  std::vector<int> tca_unknown_;    // per actuator: its TCA unknown or -1
+  std::vector<double> start_temperature_K_;  // per actuator: temperature at lambda = 0
+  Eigen::VectorXd nodal_dead_load_;  // gravity + tip force on free-node dofs (lambda = 1)
+
+  /// Builds the tangent's pattern and the position of every element entry in its values.
+  void assemble_pattern(Eigen::SparseMatrix<double>& K) const;
+  void evaluate_element(const State& state, int e, const std::vector<double>& tensions_N,
+                        bool with_tangent, ElementEvaluation& out) const;
+  mutable std::vector<int> element_slots_;  // per element, (6 n)^2 value indices or -1
+  mutable std::vector<int> tca_slots_;      // per TCA unknown: row then column entries, then diagonal
+};
+
+/// Solves the model from `state` (warm start if it matches the mesh, else from the
+/// reference configuration), ramping loads and actuation with a load factor lambda = 0 -> 1
+/// in adaptive steps (halve on failure, double after convergence within 4 iterations):
+/// gravity, tip wrench and tension drives scale with lambda; TCA temperatures ramp from the
+/// material's reference temperature to their targets. Each step runs Newton with full steps
+/// (backtracking only out of the model's domain). Throws InputError for bad options; never
+/// throws for non-convergence: `state` then holds the last accepted configuration.
+Summary solve(const rod::RodModel& model, const Options& options, State& state);
+
+/// Fills a result file record: method "fe", discretization {elements, order}, tip pose,
+/// actuator tensions and elongations, three-point bending radius, centerline at nodes.
+rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
+                        const Summary& summary);
+
+/// Parses "reduced"/"full" (InputError naming `integration` otherwise).
+Integration parse_integration(const std::string& text);
+/// Parses "klu"/"umfpack"/"sparselu" (InputError naming `linear_solver` otherwise).
+LinearSolver parse_linear_solver(const std::string& text);
+
+}  // namespace tcasim::beam_fe

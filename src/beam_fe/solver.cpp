@@ -1,0 +1,270 @@
+// Newton's method with backtracking line search and adaptive load stepping.
+#include <Eigen/KLUSupport>
+#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <memory>
+#include <string>
+
+#include "beam_fe/beam_fe.hpp"
+#include "common/error.hpp"
+
+namespace tcasim::beam_fe {
+namespace {
+
+using Eigen::VectorXd;
+using SpMat = Eigen::SparseMatrix<double>;
+
+/// Backtracking halvings before a Newton step counts as failed.
+constexpr int kMaxBacktracks = 12;
+/// Grow the load increment after a step converging within this many iterations.
+constexpr int kEasyIterations = 4;
+
+/// The three sparse LU back ends behind one interface; the pattern is analysed once.
+class LinearSystem {
+ public:
+  explicit LinearSystem(LinearSolver kind) : kind_(kind) {}
+  /// Factorizes K (analysing its pattern on the first call); false on failure.
+  bool factorize(const SpMat& K) {
+    switch (kind_) {
+      case LinearSolver::kKlu:
+        if (!analysed_) klu_.analyzePattern(K);
+        analysed_ = true;
+        klu_.factorize(K);
+        return klu_.info() == Eigen::Success;
+      case LinearSolver::kUmfpack:
+        if (!analysed_) umf_.analyzePattern(K);
+        analysed_ = true;
+        umf_.factorize(K);
+        return umf_.info() == Eigen::Success;
+      case LinearSolver::kSparseLu:
+        if (!analysed_) slu_.analyzePattern(K);
+        analysed_ = true;
+        slu_.factorize(K);
+        return slu_.info() == Eigen::Success;
+    }
+    return false;
+  }
+  /// Solves K x = b with the last factorization; false on failure.
+  bool solve(const VectorXd& b, VectorXd& x) {
+    switch (kind_) {
+      case LinearSolver::kKlu:
+        x = klu_.solve(b);
+        return klu_.info() == Eigen::Success;
+      case LinearSolver::kUmfpack:
+        x = umf_.solve(b);
+        return umf_.info() == Eigen::Success;
+      case LinearSolver::kSparseLu:
+        x = slu_.solve(b);
+        return slu_.info() == Eigen::Success;
+    }
+    return false;
+  }
+
+ private:
+  LinearSolver kind_;
+  bool analysed_ = false;
+  Eigen::KLU<SpMat> klu_;
+  Eigen::UmfPackLU<SpMat> umf_;
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu_;
+};
+
+bool state_matches(const Discretization& disc, const State& st) {
+  return static_cast<int>(st.p_W_m.size()) == disc.node_count() &&
+         static_cast<int>(st.q_WB.size()) == disc.node_count() &&
+         st.s_m.size() == st.p_W_m.size() && st.tensions_N.size() == disc.model().actuators.size();
+}
+
+/// Outcome of Newton's method at one load factor.
+struct StepResult {
+  bool converged = false;
+  int iterations = 0;
+  double residual_inf = 0.0;
+  double scale = 0.0;
+  std::string why;
+};
+
+/// The residual (and tangent); false where the state leaves the model's domain (a
+/// TCA stretched past its fiber length: DomainError) or the result is not finite.
+bool evaluate(const Discretization& disc, const State& st, double lambda, SpMat* K, VectorXd& r,
+              std::string* why = nullptr) {
+  try {
+    r = disc.residual(st, lambda, K);
+  } catch (const DomainError& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+  if (!r.allFinite() && why) *why = "the residual is not finite";
+  return r.allFinite();
+}
+
+StepResult newton(const Discretization& disc, const Options& options, double lambda, State& st,
+                  SpMat& K, LinearSystem& linear) {
+  StepResult out;
+  disc.apply_prescribed_tensions(st, lambda);
+  VectorXd r;
+  if (!evaluate(disc, st, lambda, &K, r, &out.why)) return out;
+  for (int it = 0;; ++it) {
+    out.residual_inf = r.lpNorm<Eigen::Infinity>();
+    out.scale = disc.residual_scale(st, lambda);
+    if (disc.within_tolerance(r, st, lambda, options)) {
+      out.converged = true;
+      return out;
+    }
+    if (it == options.max_iterations) {
+      out.why = fmt::format("no convergence in {} Newton iterations (||r||_inf = {:.3e})",
+                            options.max_iterations, out.residual_inf);
+      return out;
+    }
+    ++out.iterations;
+    VectorXd dx;
+    if (!linear.factorize(K) || !linear.solve(-r, dx) || !dx.allFinite()) {
+      out.why = "the tangent matrix could not be factorized (singular or not finite)";
+      return out;
+    }
+    // Line search as a safeguard: full Newton steps are taken whenever the trial state is
+    // inside the model's domain with a finite residual; otherwise the step is halved. Tests
+    // of sufficient decrease (|r| or the natural monotonicity test) were tried and reject
+    // the good overshooting first steps of beams (a straight rod's first iterate raises |r|
+    // up to 1e6-fold before Newton converges quadratically), stalling Newton at small
+    // alpha; globalization is by the load stepping instead: a step that does not converge
+    // within max_iterations is halved.
+    double alpha = 1.0;
+    bool accepted = false;
+    std::string trial_why;
+    for (int b = 0; b <= kMaxBacktracks; ++b, alpha *= 0.5) {
+      State trial = st;
+      disc.retract(trial, alpha * dx);
+      // The trial's tangent is assembled with its residual: an accepted step then needs
+      // no second evaluation.
+      VectorXd rt;
+      if (!evaluate(disc, trial, lambda, &K, rt, &trial_why)) continue;
+      st = std::move(trial);
+      r = std::move(rt);
+      accepted = true;
+      break;
+    }
+    if (!accepted) {
+      out.why = "every backtracked Newton step failed: " + trial_why;
+      return out;
+    }
+  }
+}
+
+}  // namespace
+
+Summary solve(const rod::RodModel& model, const Options& options, State& state) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Summary summary;
+  const Discretization disc(model, options);  // validates the options
+  if (!state_matches(disc, state)) state = disc.reference_state();
+  auto finish = [&](Summary& s) -> Summary {
+    s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
+  };
+  if (model.tip_constraint) {
+    summary.status = Summary::Status::kNotSupported;
+    summary.message = "tip_constraint is not supported by this solver yet";
+    return finish(summary);
+  }
+
+  SpMat K;
+  LinearSystem linear(options.linear_solver);
+  double lambda = state.load_factor >= 1.0 ? 1.0 : state.load_factor;
+  double step = std::min(options.initial_load_step, 1.0 - lambda);
+  int attempts = 0;
+  StepResult last;
+  if (lambda >= 1.0) step = 0.0;  // warm start at full load: one Newton solve at lambda = 1
+  while (true) {
+    if (attempts == options.max_load_steps) {
+      summary.status = Summary::Status::kLoadStepLimit;
+      summary.message = fmt::format("{} load steps reached load factor {:.6g} < 1",
+                                    options.max_load_steps, lambda);
+      break;
+    }
+    ++attempts;
+    const double target = step > 0.0 ? std::min(1.0, lambda + step) : 1.0;
+    State trial = state;
+    last = newton(disc, options, target, trial, K, linear);
+    summary.iterations += last.iterations;
+    if (last.converged) {
+      state = std::move(trial);
+      state.load_factor = target;
+      lambda = target;
+      ++summary.load_steps;
+      summary.residual_inf = last.residual_inf;
+      summary.residual_scale = last.scale;
+      if (lambda >= 1.0) {
+        summary.status = Summary::Status::kConverged;
+        break;
+      }
+      if (last.iterations <= kEasyIterations) step *= 2.0;
+      step = std::min(step, 1.0 - lambda);
+      continue;
+    }
+    ++summary.rejected_steps;
+    if (step == 0.0) {
+      // A warm start at full load failed: ramp again from the reference configuration.
+      state = disc.reference_state();
+      lambda = 0.0;
+      step = options.initial_load_step;
+      continue;
+    }
+    step *= 0.5;
+    if (step < options.min_load_step || step == 0.0) {
+      summary.status = Summary::Status::kStepTooSmall;
+      summary.message = fmt::format(
+          "load step halved below {:.3g} at load factor {:.6g}: {}", options.min_load_step, lambda,
+          last.why);
+      break;
+    }
+  }
+  summary.load_factor = lambda;
+  if (!summary.converged()) {
+    // Report the residual of the returned (last accepted) state at its load factor.
+    VectorXd r;
+    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r) ? r.lpNorm<Eigen::Infinity>() : 0.0;
+    summary.residual_scale = disc.residual_scale(state, state.load_factor);
+    if (!summary.message.empty() && summary.load_steps == 0 && state.load_factor == 0.0) {
+      summary.message += " (no load step converged; the state is the reference configuration)";
+    }
+  }
+  return finish(summary);
+}
+
+rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
+                        const Summary& summary) {
+  rod::Result res;
+  res.scenario = model.name;
+  res.method = "fe";
+  res.discretization = {{"elements", options.elements}, {"order", options.order}};
+  res.converged = summary.converged();
+  res.iterations = summary.iterations;
+  res.residual = summary.residual_inf;
+  res.wall_time_s = summary.wall_time_s;
+  res.message = summary.message;
+  if (state.p_W_m.empty()) return res;
+  res.tip_position_W_m = state.p_W_m.back();
+  res.tip_R_WB = state.q_WB.back().toRotationMatrix();
+  const Discretization disc(model, options);
+  const std::vector<double> lengths = disc.string_lengths(state);
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    res.actuators.push_back(
+        {model.actuators[i].name, state.tensions_N[i], lengths[i] - model.actuators[i].rest_length_m});
+  }
+  res.centerline_s_m = state.s_m;
+  res.centerline_p_W_m = state.p_W_m;
+  for (const Eigen::Quaterniond& q : state.q_WB) res.centerline_R_WB.push_back(q.toRotationMatrix());
+  try {
+    res.bending_radius_m =
+        rod::three_point_inner_radius(model, res.centerline_s_m, res.centerline_p_W_m, res.centerline_R_WB);
+  } catch (const DomainError&) {
+    // A custom section has no outline: the radius metric is undefined, left empty.
+    res.bending_radius_m.reset();
+  }
+  return res;
+}
+
+}  // namespace tcasim::beam_fe

@@ -1,0 +1,423 @@
+// Solver tests: closed forms, classical benchmarks with exact solutions, objectivity,
+// mesh convergence orders, locking, input errors and non-convergence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "beam_fe/beam_fe.hpp"
+#include "common/error.hpp"
+#include "common/so3.hpp"
+#include "common/units.hpp"
+#include "models.hpp"
+#include "support/convergence.hpp"
+
+namespace tcasim::beam_fe {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+constexpr double kPi = units::kPi;
+
+/// Round-off of quantities computed from a converged Newton solution (tolerance_rel
+/// 1e-10 by default; here tightened): constant-strain states are exact on any mesh.
+constexpr double kExact = 1e-10;
+
+Options options(int elements, int order) {
+  Options o;
+  o.elements = elements;
+  o.order = order;
+  o.tolerance_rel = 1e-12;
+  return o;
+}
+
+struct Solved {
+  Summary summary;
+  State state;
+};
+Solved run(const rod::RodModel& model, const Options& opt) {
+  Solved s;
+  s.summary = solve(model, opt, s.state);
+  return s;
+}
+
+/// Two straight tension strings (one doubled) on a steel-like rod, no gravity.
+rod::RodModel straight_strings_rod() {
+  rod::RodModel m = testing::stiffness_rod(0.5, 60.0, 25.0, 0.02, 0.03, 0.015);
+  testing::add_tension_string(m, "a", 0.01, 0.004, 15.0, 1);
+  testing::add_tension_string(m, "b", -0.006, -0.008, 4.0, 2);
+  return m;
+}
+
+/// conventions.md closed form: constant strains from the tensions.
+void closed_form(const rod::RodModel& m, Vector3d& nu, Vector3d& omega, std::vector<double>& delta) {
+  const Vector3d Kn = m.shear_extension_stiffness(), Ko = m.bending_torsion_stiffness();
+  nu = Vector3d::UnitZ();
+  omega = m.reference_curvature_B_1_m;
+  for (const rod::Actuator& a : m.actuators) {
+    const double cT = a.count * a.drive.tension_N;
+    nu.z() -= cT / Kn.z();
+    omega.x() -= cT * a.routing.offset_m.y() / Ko.x();
+    omega.y() += cT * a.routing.offset_m.x() / Ko.y();
+  }
+  delta.clear();
+  for (const rod::Actuator& ai : m.actuators) {
+    double d = 0.0;
+    for (const rod::Actuator& aj : m.actuators) {
+      const double C = 1.0 / Kn.z() + ai.routing.offset_m.y() * aj.routing.offset_m.y() / Ko.x() +
+                       ai.routing.offset_m.x() * aj.routing.offset_m.x() / Ko.y();
+      d -= m.length_m * C * aj.count * aj.drive.tension_N;
+    }
+    delta.push_back(d);
+  }
+}
+
+TEST(BeamFeSolver, StraightStringsGiveExactTensionsElongationsAndNodalRotationsOnAnyMesh) {
+  const rod::RodModel m = straight_strings_rod();
+  Vector3d nu, omega;
+  std::vector<double> delta;
+  closed_form(m, nu, omega, delta);
+  for (const int order : {1, 2}) {
+    for (const int elements : {1, 2, 5}) {
+      SCOPED_TRACE(::testing::Message() << "order " << order << ", elements " << elements);
+      const Options opt = options(elements, order);
+      const Solved s = run(m, opt);
+      ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+      const rod::Result res = make_result(m, opt, s.state, s.summary);
+      for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+        EXPECT_NEAR(res.actuators[i].tension_N, m.actuators[i].drive.tension_N, 0.0);
+        EXPECT_NEAR(res.actuators[i].elongation_m, delta[i], kExact * std::abs(delta[i]));
+      }
+      for (std::size_t k = 0; k < s.state.s_m.size(); ++k) {
+        const Matrix3d R_exact = so3::exp(s.state.s_m[k] * omega);
+        EXPECT_LT((s.state.q_WB[k].toRotationMatrix() - R_exact).cwiseAbs().maxCoeff(), kExact);
+      }
+      for (const PointStrain& p : Discretization(m, opt).strains(s.state)) {
+        EXPECT_LT((p.nu_B - nu).cwiseAbs().maxCoeff(), kExact);
+        EXPECT_LT((p.omega_B - omega).cwiseAbs().maxCoeff(), kExact);
+      }
+    }
+  }
+}
+
+/// Errors of the tip position over meshes `elements`, against `exact`.
+std::vector<double> tip_errors(const rod::RodModel& m, int order, const std::vector<int>& elements,
+                               const Vector3d& exact, Integration integration = Integration::kReduced) {
+  std::vector<double> e;
+  for (const int n : elements) {
+    Options opt = options(n, order);
+    opt.integration = integration;
+    const Solved s = run(m, opt);
+    EXPECT_TRUE(s.summary.converged()) << s.summary.message;
+    e.push_back((s.state.p_W_m.back() - exact).norm());
+  }
+  return e;
+}
+
+std::vector<double> mesh_sizes(double L, const std::vector<int>& elements) {
+  std::vector<double> h;
+  for (const int n : elements) h.push_back(L / n);
+  return h;
+}
+
+/// Observed-order brackets of the brief: 2 +- 0.15 (linear), 4 +- 0.3 (quadratic).
+constexpr double kLinearOrder = 2.0, kLinearBracket = 0.15;
+constexpr double kQuadraticOrder = 4.0, kQuadraticBracket = 0.3;
+
+TEST(BeamFeSolver, StraightStringsTipPositionConvergesAtTheElementOrder) {
+  const rod::RodModel m = straight_strings_rod();
+  Vector3d nu, omega;
+  std::vector<double> delta;
+  closed_form(m, nu, omega, delta);
+  const Vector3d tip = m.length_m * so3::left_jacobian(m.length_m * omega) * nu;
+  const std::vector<int> lin{2, 4, 8, 16}, quad{1, 2, 4, 8};
+  const std::vector<double> e1 = tip_errors(m, 1, lin, tip), e2 = tip_errors(m, 2, quad, tip);
+  std::printf("straight strings, linear:\n%s", test_support::convergence_table(mesh_sizes(m.length_m, lin), e1).c_str());
+  std::printf("straight strings, quadratic:\n%s", test_support::convergence_table(mesh_sizes(m.length_m, quad), e2).c_str());
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, lin), e1, kLinearOrder, kLinearBracket);
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder, kQuadraticBracket);
+}
+
+TEST(BeamFeSolver, TcaDriveTensionSolvesTheClosedFormScalarEquation) {
+  // Straight TCA, no gravity, no initial bending: delta = -L C T with C = 1/EA + r_x^2/EI_y,
+  // T = F_tca(delta, temperature), solved here by scalar Newton on the TCA law.
+  rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 0.0);
+  testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0, units::degC_to_K(90.0));
+  const Vector3d Kn = m.shear_extension_stiffness(), Ko = m.bending_torsion_stiffness();
+  const double C = 1.0 / Kn.z() + 0.003 * 0.003 / Ko.y();
+  const tca::Tca& tca = *m.actuators[0].drive.tca;
+  double T = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    const tca::TensionState f = tca.tension(-m.length_m * C * T, units::degC_to_K(90.0));
+    const double g = T - f.tension_N;
+    T -= g / (1.0 + f.dF_ddelta_N_m * m.length_m * C);
+  }
+  for (const int order : {1, 2}) {
+    for (const int elements : {1, 2, 5}) {
+      SCOPED_TRACE(::testing::Message() << "order " << order << ", elements " << elements);
+      const Options opt = options(elements, order);
+      const Solved s = run(m, opt);
+      ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+      const rod::Result res = make_result(m, opt, s.state, s.summary);
+      EXPECT_NEAR(res.actuators[0].tension_N, T, kExact * std::abs(T));
+      EXPECT_NEAR(res.actuators[0].elongation_m, -m.length_m * C * T, kExact * m.length_m * C * std::abs(T));
+      // A heated extension TCA pushes (T < 0) and bends the rod away from its +x offset.
+      EXPECT_LT(T, 0.0);
+      EXPECT_LT(res.tip_position_W_m.x(), 0.0);
+    }
+  }
+}
+
+/// A rod with EI = GJ and no shear/extension under a pure end moment (n = 0, so nu = e3).
+rod::RodModel moment_rod(const Vector3d& M_W) {
+  rod::RodModel m = testing::stiffness_rod(1.0, 1e4, 1e4, 1.0, 1.0, 1.0);
+  m.tip_moment_W_Nm = M_W;
+  return m;
+}
+
+/// Discretization error of 16 quadratic elements on a total turning angle <= 2 pi:
+/// h^4 convergence from ~1e-3 at one element per radian gives < 1e-6 L.
+constexpr double kSixteenQuadraticTip = 1e-6;
+
+void check_constant_curvature(const rod::RodModel& m) {
+  const Vector3d omega = m.tip_moment_W_Nm;  // EI = 1: omega_B = M (body = world at the base)
+  const Solved s = run(m, options(16, 2));
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  for (std::size_t k = 0; k < s.state.s_m.size(); ++k) {
+    EXPECT_LT((s.state.q_WB[k].toRotationMatrix() - so3::exp(s.state.s_m[k] * omega)).cwiseAbs().maxCoeff(),
+              kExact);
+  }
+  const Vector3d tip = m.length_m * so3::left_jacobian(m.length_m * omega) * Vector3d::UnitZ();
+  EXPECT_LT((s.state.p_W_m.back() - tip).norm(), kSixteenQuadraticTip * m.length_m);
+}
+
+TEST(BeamFeSolver, HalfRollUpUnderEndMomentPutsTheTipAtTwoLOverPi) {
+  const rod::RodModel m = moment_rod({0.0, kPi, 0.0});  // M = pi EI / L
+  check_constant_curvature(m);
+  const Solved s = run(m, options(16, 2));
+  EXPECT_NEAR(s.state.p_W_m.back().x(), 2.0 / kPi, kSixteenQuadraticTip);
+  EXPECT_NEAR(s.state.p_W_m.back().z(), 0.0, kSixteenQuadraticTip);
+}
+
+TEST(BeamFeSolver, FullRollUpUnderEndMomentClosesTheCircle) {
+  check_constant_curvature(moment_rod({0.0, 2.0 * kPi, 0.0}));
+}
+
+TEST(BeamFeSolver, EndMomentWithEqualBendingAndTorsionStiffnessGivesAHelix) {
+  check_constant_curvature(moment_rod({2.0, -1.0, 3.0}));
+}
+
+struct Mattiasson {
+  double k, w, u, rotation;  // rotation < 0: not tabulated
+};
+
+TEST(BeamFeSolver, MattiassonCantileverMatchesTheElasticaTable) {
+  // Inextensible elastica approximated by EA = GA = 1e7 EI/L^2: compliance error <= k 1e-7.
+  // Reference values are published to 5 digits (+-5e-6); 32 quadratic elements are
+  // converged far below that.
+  constexpr double kFiveDigits = 1e-5;
+  for (const Mattiasson ref : {Mattiasson{1, 0.30172, 0.05643, 0.46135}, Mattiasson{2, 0.49346, 0.16064, -1},
+                               Mattiasson{5, 0.71379, 0.38763, -1}, Mattiasson{10, 0.81061, 0.55500, 1.43029}}) {
+    SCOPED_TRACE(::testing::Message() << "k = " << ref.k);
+    rod::RodModel m = testing::stiffness_rod(1.0, 1e7, 1e7, 1.0, 1.0, 1.0);
+    m.tip_force_W_N = {ref.k, 0.0, 0.0};
+    const Solved s = run(m, options(32, 2));
+    ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+    const Vector3d tip = s.state.p_W_m.back();
+    const Vector3d t = s.state.q_WB.back() * Vector3d::UnitZ();
+    std::printf("Mattiasson k = %g: w/L = %.6f (ref %.5f), u/L = %.6f (ref %.5f), rotation = %.6f\n", ref.k,
+                tip.x(), ref.w, 1.0 - tip.z(), ref.u, std::atan2(t.x(), t.z()));
+    EXPECT_NEAR(tip.x(), ref.w, kFiveDigits);
+    EXPECT_NEAR(1.0 - tip.z(), ref.u, kFiveDigits);
+    if (ref.rotation > 0) {
+      EXPECT_NEAR(std::atan2(t.x(), t.z()), ref.rotation, kFiveDigits);
+    }
+  }
+}
+
+/// A loaded robot: TCA, helical tension string, gravity, initial bending, tip force and moment.
+rod::RodModel loaded_manipulator() {
+  rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  testing::add_tension_string(m, "helix", 0.002, 0.0, 0.01, 1, 12.0);
+  m.tip_force_W_N = {0.0, 2e-3, 0.0};
+  m.tip_moment_W_Nm = {0.0, 0.0, 2e-5};
+  return m;
+}
+
+TEST(BeamFeSolver, RigidlyRotatedProblemGivesTheSameStrainsAndTensions) {
+  const rod::RodModel m = loaded_manipulator();
+  rod::RodModel r = m;
+  const Matrix3d Q = so3::exp(Vector3d(0.3, -1.2, 0.7));
+  const Vector3d b(0.1, -0.2, 0.3);
+  r.R_WB0 = Q;
+  r.base_position_W_m = b;
+  r.gravity_W_m_s2 = Q * m.gravity_W_m_s2;
+  r.tip_force_W_N = Q * m.tip_force_W_N;
+  r.tip_moment_W_Nm = Q * m.tip_moment_W_Nm;
+  const Options opt = options(6, 2);
+  const Solved a = run(m, opt), c = run(r, opt);
+  ASSERT_TRUE(a.summary.converged()) << a.summary.message;
+  ASSERT_TRUE(c.summary.converged()) << c.summary.message;
+  // Converged to tolerance_rel 1e-12: strains agree to ~1e-10 of their size.
+  constexpr double kObjective = 1e-9;
+  const std::vector<PointStrain> sa = Discretization(m, opt).strains(a.state);
+  const std::vector<PointStrain> sc = Discretization(r, opt).strains(c.state);
+  for (std::size_t g = 0; g < sa.size(); ++g) {
+    EXPECT_LT((sa[g].nu_B - sc[g].nu_B).norm(), kObjective);
+    EXPECT_LT((sa[g].omega_B - sc[g].omega_B).norm(), kObjective * sa[g].omega_B.norm());
+  }
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    EXPECT_NEAR(a.state.tensions_N[i], c.state.tensions_N[i], kObjective * std::abs(a.state.tensions_N[i]));
+  }
+  for (std::size_t k = 0; k < a.state.p_W_m.size(); ++k) {
+    EXPECT_LT((b + Q * a.state.p_W_m[k] - c.state.p_W_m[k]).norm(), kObjective * m.length_m);
+  }
+}
+
+TEST(BeamFeSolver, TipErrorConvergesAtOrderTwoForLinearAndFourForQuadraticElements) {
+  const rod::RodModel m = loaded_manipulator();
+  const std::vector<int> lin{4, 8, 16, 32}, quad{2, 4, 8, 16};
+  // Reference: quadratic elements, 8x the finest quadratic mesh (its error is 8^-4 of the
+  // finest quadratic one, far below every linear error).
+  const Solved ref = run(m, options(128, 2));
+  ASSERT_TRUE(ref.summary.converged()) << ref.summary.message;
+  const Vector3d tip = ref.state.p_W_m.back();
+  const std::vector<double> e1 = tip_errors(m, 1, lin, tip), e2 = tip_errors(m, 2, quad, tip);
+  std::printf("loaded manipulator, linear (reduced):\n%s",
+              test_support::convergence_table(mesh_sizes(m.length_m, lin), e1).c_str());
+  std::printf("loaded manipulator, quadratic (reduced):\n%s",
+              test_support::convergence_table(mesh_sizes(m.length_m, quad), e2).c_str());
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, lin), e1, kLinearOrder, kLinearBracket);
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder, kQuadraticBracket);
+}
+
+TEST(BeamFeSolver, FullIntegrationOfLinearElementsLocksOnASlenderRod) {
+  // Thickness t = 1 mm, L = 1 m: EA/EI = 12/t^2. Tip load k = P L^2/EI = 1.
+  const double t = 1e-3, E = 1e9;
+  rod::RodModel m = testing::stiffness_rod(1.0, E * t * t, 0.5 * E * t * t, E * t * t * t * t / 12.0,
+                                           E * t * t * t * t / 12.0, E * t * t * t * t / 12.0);
+  m.tip_force_W_N = {E * t * t * t * t / 12.0, 0.0, 0.0};
+  const Solved ref = run(m, options(64, 2));
+  ASSERT_TRUE(ref.summary.converged()) << ref.summary.message;
+  const Vector3d tip = ref.state.p_W_m.back();
+  const double reduced = tip_errors(m, 1, {8}, tip, Integration::kReduced)[0];
+  const double full = tip_errors(m, 1, {8}, tip, Integration::kFull)[0];
+  std::printf("slender rod, 8 linear elements: tip error reduced %.3e, full %.3e (tip deflection %.4f)\n",
+              reduced, full, tip.x());
+  // Locking: shear/membrane stiffness 12 (h/t)^2 ~ 2e5 times the bending stiffness.
+  constexpr double kMuchLarger = 100.0;
+  EXPECT_GT(full, kMuchLarger * reduced);
+}
+
+TEST(BeamFeSolver, RejectsZeroElementsAndOrderThree) {
+  const rod::RodModel m = straight_strings_rod();
+  State st;
+  Options bad = options(0, 2);
+  try {
+    solve(m, bad, st);
+    FAIL() << "no InputError for elements = 0";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "elements");
+  }
+  bad = options(4, 3);
+  try {
+    solve(m, bad, st);
+    FAIL() << "no InputError for order = 3";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "order");
+  }
+  EXPECT_THROW(parse_integration("exact"), InputError);
+}
+
+TEST(BeamFeSolver, NonConvergenceIsReportedWithAReasonAndNoNaN) {
+  rod::RodModel m = testing::stiffness_rod(1.0, 1e7, 1e7, 1.0, 1.0, 1.0);
+  m.tip_force_W_N = {10.0, 0.0, 0.0};
+  Options opt = options(8, 2);
+  opt.max_iterations = 1;
+  opt.max_load_steps = 4;
+  const Solved s = run(m, opt);
+  EXPECT_FALSE(s.summary.converged());
+  EXPECT_FALSE(s.summary.message.empty());
+  const rod::Result res = make_result(m, opt, s.state, s.summary);
+  EXPECT_FALSE(res.converged);
+  EXPECT_TRUE(res.tip_position_W_m.allFinite());
+  EXPECT_TRUE(std::isfinite(res.residual));
+  const nlohmann::json j = rod::to_json(res);
+  EXPECT_FALSE(j.at("converged").get<bool>());
+}
+
+TEST(BeamFeSolver, TipConstraintIsReportedAsNotSupported) {
+  rod::RodModel m = straight_strings_rod();
+  m.tip_constraint = rod::TipConstraint{};
+  State st;
+  const Summary s = solve(m, options(4, 2), st);
+  EXPECT_EQ(s.status, Summary::Status::kNotSupported);
+  EXPECT_EQ(s.message, "tip_constraint is not supported by this solver yet");
+}
+
+}  // namespace
+}  // namespace tcasim::beam_fe
+
+namespace tcasim::beam_fe {
+namespace {
+
+TEST(BeamFeSolver, KluUmfpackAndSparseLuGiveTheSameSolution) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  std::vector<Eigen::Vector3d> tips;
+  for (const char* name : {"klu", "umfpack", "sparselu"}) {
+    Options opt = options(8, 2);
+    opt.linear_solver = parse_linear_solver(name);
+    const Solved s = run(m, opt);
+    ASSERT_TRUE(s.summary.converged()) << name << ": " << s.summary.message;
+    tips.push_back(s.state.p_W_m.back());
+  }
+  // Converged to tolerance_rel 1e-12 of the load scale: tips agree to ~1e-12 of L.
+  EXPECT_LT((tips[0] - tips[1]).norm(), 1e-10 * m.length_m);
+  EXPECT_LT((tips[0] - tips[2]).norm(), 1e-10 * m.length_m);
+  EXPECT_THROW(parse_linear_solver("cholmod"), InputError);
+}
+
+TEST(BeamFeSolver, WarmStartFromAConvergedStateNeedsNoNewtonIteration) {
+  const rod::RodModel m = loaded_manipulator();
+  const Options opt = options(8, 2);
+  Solved s = run(m, opt);
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  const Summary again = solve(m, opt, s.state);
+  EXPECT_TRUE(again.converged());
+  EXPECT_EQ(again.iterations, 0);
+}
+
+TEST(BeamFeSolver, ResultCarriesMethodDiscretizationTipAndBendingRadius) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  const Options opt = options(8, 2);
+  const Solved s = run(m, opt);
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  const rod::Result res = make_result(m, opt, s.state, s.summary);
+  EXPECT_EQ(res.method, "fe");
+  ASSERT_EQ(res.discretization.size(), 2u);
+  EXPECT_EQ(res.discretization[0].first, "elements");
+  EXPECT_EQ(res.discretization[0].second, 8.0);
+  EXPECT_EQ(res.discretization[1].first, "order");
+  EXPECT_EQ(res.discretization[1].second, 2.0);
+  EXPECT_EQ(res.centerline_s_m.size(), 17u);
+  EXPECT_EQ(res.tip_position_W_m, s.state.p_W_m.back());
+  ASSERT_TRUE(res.bending_radius_m.has_value());
+  EXPECT_GT(*res.bending_radius_m, 0.0);
+  EXPECT_TRUE(res.message.empty());
+}
+
+TEST(BeamFeSolver, WarmStartFromAnotherTemperatureConvergesToTheColdStartSolution) {
+  const Options opt = options(8, 2);
+  Solved warm = run(testing::circular_manipulator(units::degC_to_K(40.0)), opt);
+  ASSERT_TRUE(warm.summary.converged()) << warm.summary.message;
+  const rod::RodModel hot = testing::circular_manipulator(units::degC_to_K(90.0));
+  const Summary s = solve(hot, opt, warm.state);
+  ASSERT_TRUE(s.converged()) << s.message;
+  const Solved cold = run(hot, opt);
+  // Both converged to tolerance_rel 1e-12 of the load scale.
+  EXPECT_LT((warm.state.p_W_m.back() - cold.state.p_W_m.back()).norm(), 1e-10 * hot.length_m);
+}
+
+}  // namespace
+}  // namespace tcasim::beam_fe
