@@ -44,6 +44,7 @@
 #include "rod/scenario.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
+#include "validation/common/gates.hpp"
 
 namespace {
 
@@ -61,16 +62,6 @@ struct Case {
   std::vector<double> temperatures_degC;
   std::vector<tca::CurvePoint> curve;
   std::optional<double> onset_K;
-};
-
-struct Gate {
-  int failures = 0;
-  void check(bool ok, const std::string& what) {
-    if (!ok) {
-      ++failures;
-      fmt::print("  GATE FAILED: {}\n", what);
-    }
-  }
 };
 
 std::string case_name(const Case& c) {
@@ -171,26 +162,29 @@ int run(int argc, char** argv) {
   }
 
   fmt::print("Step 4: gates\n");
-  Gate gate;
+  validation::Gates gates("validate_fig5_tca");
   for (const Case& c : cases) {
+    // Gates 1 and 2, aggregated over the curve: count the points that break them.
+    int closed_violations = 0, open_violations = 0, decreases = 0;
+    double worst_below_m = 0.0;
     for (std::size_t i = 0; i < c.curve.size(); ++i) {
       const auto& p = c.curve[i];
       const bool below = !c.onset_K || p.temperature_K < *c.onset_K;
-      if (below) {
-        gate.check(p.elongation_m == 0.0 && p.coils_closed,
-                   fmt::format("{}: elongation {} m at {} degC below the onset", case_name(c),
-                               p.elongation_m, c.temperatures_degC[i]));
-      } else if (p.temperature_K > *c.onset_K) {
-        gate.check(p.elongation_m > 0.0 && !p.coils_closed,
-                   fmt::format("{}: elongation {} m at {} degC above the onset", case_name(c),
-                               p.elongation_m, c.temperatures_degC[i]));
+      if (below && !(p.elongation_m == 0.0 && p.coils_closed)) {
+        ++closed_violations;
+        worst_below_m = std::max(worst_below_m, std::abs(p.elongation_m));
+      } else if (!below && p.temperature_K > *c.onset_K && !(p.elongation_m > 0.0 && !p.coils_closed)) {
+        ++open_violations;
       }
-      if (i > 0) {
-        gate.check(p.elongation_m >= c.curve[i - 1].elongation_m,
-                   fmt::format("{}: elongation decreases from {} to {} degC", case_name(c),
-                               c.temperatures_degC[i - 1], c.temperatures_degC[i]));
-      }
+      if (i > 0 && p.elongation_m < c.curve[i - 1].elongation_m) ++decreases;
     }
+    gates.check(case_name(c) + ": zero elongation below the onset, positive above",
+                closed_violations == 0 && open_violations == 0,
+                fmt::format("{} points wrong below (max |delta| {:.3e} m), {} above", closed_violations,
+                            worst_below_m, open_violations),
+                "0 points");
+    gates.check(case_name(c) + ": elongation non-decreasing with temperature", decreases == 0,
+                fmt::format("{} decreases", decreases), "0 decreases");
   }
   for (const Case& light : cases) {
     for (const Case& heavy : cases) {
@@ -199,23 +193,25 @@ int run(int argc, char** argv) {
         continue;
       }
       const double inf = std::numeric_limits<double>::infinity();
-      gate.check(heavy.onset_K.value_or(inf) >= light.onset_K.value_or(inf),
-                 fmt::format("{}: onset earlier than with {} g", case_name(heavy), light.load_g));
+      const double t_heavy = heavy.onset_K.value_or(inf), t_light = light.onset_K.value_or(inf);
+      gates.check(fmt::format("{}: onset not earlier than with {} g", case_name(heavy), light.load_g),
+                  t_heavy >= t_light,
+                  fmt::format("{:.2f} degC vs {:.2f} degC", units::K_to_degC(t_heavy), units::K_to_degC(t_light)),
+                  "heavier >= lighter");
     }
   }
   if (!tcasim_exe.empty()) {
     fmt::print("  gate 4: `tcasim tca` ({}) against the library curves\n", tcasim_exe);
     for (const Case& c : cases) {
       const auto cli = run_cli(tcasim_exe, tcas_file, c, grid_text);
-      gate.check(cli.size() == c.curve.size(),
-                 fmt::format("{}: tcasim tca printed {} rows, expected {}", case_name(c),
-                             cli.size(), c.curve.size()));
+      double worst = cli.size() == c.curve.size() ? 0.0 : std::numeric_limits<double>::infinity();
       for (std::size_t i = 0; i < std::min(cli.size(), c.curve.size()); ++i) {
         const double ref = c.curve[i].elongation_m;
-        gate.check(std::abs(cli[i] - ref) <= kCliRelTol * std::abs(ref),
-                   fmt::format("{} at {} degC: tcasim tca gives {} m, library {} m", case_name(c),
-                               c.temperatures_degC[i], cli[i], ref));
+        const double rel = ref == 0.0 ? std::abs(cli[i]) : std::abs(cli[i] - ref) / std::abs(ref);
+        worst = std::max(worst, rel);
       }
+      gates.at_most(case_name(c) + ": `tcasim tca` reproduces the library curve (relative difference)", worst,
+                    kCliRelTol);
     }
   }
 
@@ -249,9 +245,8 @@ int run(int argc, char** argv) {
                c.onset_K ? fmt::format("{:.2f}", units::K_to_degC(*c.onset_K)) : "none",
                c.curve.back().elongation_m * 1e3);
   }
-  fmt::print("{}: {} cases, {} gate failures\n", gate.failures == 0 ? "PASS" : "FAIL",
-             cases.size(), gate.failures);
-  return gate.failures == 0 ? 0 : 1;
+  gates.write_csv(out_dir);
+  return gates.finish();
 }
 
 }  // namespace

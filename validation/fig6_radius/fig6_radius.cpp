@@ -41,6 +41,7 @@
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/scenario.hpp"
+#include "validation/common/gates.hpp"
 
 namespace {
 
@@ -156,37 +157,37 @@ int main(int argc, char** argv) {
     }
 
     fmt::print("Step 3: gates\n");
-    int failures = 0;
-    auto gate = [&](bool ok, const std::string& what) {
-      fmt::print("  [{}] {}\n", ok ? "PASS" : "FAIL", what);
-      if (!ok) ++failures;
-    };
+    tcasim::validation::Gates gates("validate_fig6_radius");
     for (const auto& [key, curve] : curves) {
       const std::string label = key.first + " / " + key.second;
       int unconverged = 0;
       for (const auto& p : curve) unconverged += p.result.converged ? 0 : 1;
-      gate(unconverged == 0, fmt::format("{}: all {} points converge ({} did not)", label, curve.size(),
-                                         unconverged));
+      gates.check(label + ": every point converges", unconverged == 0,
+                  fmt::format("{} of {} did not", unconverged, curve.size()), "0");
       const bool circular = key.first == "circular-manipulator";
       const auto& ref = reference_results.at(key);
       const double ref_tension = ref.actuators.at(0).tension_N;
-      gate(ref.converged && std::abs(ref_tension) <= kZeroTension_N,
-           fmt::format("{}: no tension at 25 degC without gravity (T = {:.3e} N)", label, ref_tension));
+      gates.check(label + ": no tension at 25 degC without gravity",
+                  ref.converged && std::abs(ref_tension) <= kZeroTension_N, fmt::format("|T| = {:.3e} N", ref_tension),
+                  fmt::format("<= {:.0e} N", kZeroTension_N));
       if (circular) {
         // Inner edge of an arc of radius R at half width h toward its center: radius R - h.
         const double kappa = reference_curvature_1_m.at(key.first);
         const double expected = 1.0 / kappa - 0.5 * 0.008;
         const double got = ref.bending_radius_m.value_or(0.0);
-        gate(std::abs(got - expected) <= kRadiusRelTol * expected,
-             fmt::format("{}: reference shape at 25 degC without gravity: radius {:.9f} m, closed form {:.9f} m",
-                         label, got, expected));
+        gates.check(label + ": unloaded reference shape, radius vs closed form 1/|omega*| - D/2",
+                    std::abs(got - expected) <= kRadiusRelTol * expected,
+                    fmt::format("relative difference {:.3e} ({:.9f} m vs {:.9f} m)", std::abs(got - expected) / expected,
+                                got, expected),
+                    fmt::format("<= {:.0e}", kRadiusRelTol));
         const auto& first = curve.front().result;
-        gate(first.bending_radius_m.has_value(),
-             fmt::format("{}: starts bent at 25 degC with gravity (radius {} mm)", label,
-                         first.bending_radius_m ? fmt::format("{:.2f}", 1e3 * *first.bending_radius_m) : "none"));
+        gates.check(label + ": starts bent at 25 degC with gravity", first.bending_radius_m.has_value(),
+                    first.bending_radius_m ? fmt::format("radius {:.2f} mm", 1e3 * *first.bending_radius_m) : "straight",
+                    "a finite radius");
       } else {
-        gate(!ref.bending_radius_m.has_value(),
-             fmt::format("{}: straight at 25 degC without gravity", label));
+        gates.check(label + ": straight at 25 degC without gravity", !ref.bending_radius_m.has_value(),
+                    ref.bending_radius_m ? fmt::format("radius {:.3e} m", *ref.bending_radius_m) : "straight",
+                    "no radius");
       }
       bool decreasing = true;
       std::string where;
@@ -200,15 +201,12 @@ int main(int argc, char** argv) {
           break;
         }
       }
-      gate(decreasing, fmt::format("{}: radius decreases strictly with temperature{}", label, where));
+      gates.check(label + ": radius decreases strictly with temperature", decreasing,
+                  decreasing ? "strictly decreasing" : "not" + where, "strictly decreasing");
     }
-    fmt::print("Wrote {}/fig6_radius.csv\n", out_dir);
-    if (failures > 0) {
-      fmt::print("{} gate(s) FAILED\n", failures);
-      return 1;
-    }
-    fmt::print("all gates passed\n");
-    return 0;
+    gates.write_csv(out_dir);
+    fmt::print("Wrote {}/fig6_radius.csv and gates.csv\n", out_dir);
+    return gates.finish();
   } catch (const std::exception& e) {
     fmt::print(stderr, "validate_fig6_radius: error: {}\n", e.what());
     return 2;
