@@ -17,6 +17,7 @@
 #include "cosserat/shooting.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "rod/vtk.hpp"
 
 namespace tcasim::app {
 
@@ -93,7 +94,7 @@ rod::Result solve_with(const rod::RodModel& model, const std::string& method,
 
 void add_solve_command(CLI::App& app) {
   struct Flags {
-    std::string scenario, method = "cosserat", out;
+    std::string scenario, method = "cosserat", out, vtk, shape_csv;
     IntegratorFlags integrator;
     FeFlags fe;
   };
@@ -106,10 +107,16 @@ void add_solve_command(CLI::App& app) {
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "result file (default: stdout)");
+  cmd->add_option("--vtk", flags->vtk,
+                  "also write the deformed centerline and actuator paths as VTK PolyData (FILE.vtp, ParaView)");
+  cmd->add_option("--shape-csv", flags->shape_csv,
+                  "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
   cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     const rod::Result result = solve_with(model, flags->method, flags->integrator, flags->fe);
     rod::write_result(result, flags->out);
+    if (!flags->vtk.empty()) rod::write_vtp(model, result, flags->vtk);
+    if (!flags->shape_csv.empty()) rod::write_shape_csv(model, result, flags->shape_csv);
     if (!result.converged) {
       fmt::print(stderr, "tcasim solve: not converged: {}\n", result.message);
       throw CLI::RuntimeError(kExitNotConverged);

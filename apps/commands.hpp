@@ -16,4 +16,13 @@ void add_solve_command(CLI::App& app);
 /// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S)`
 void add_sweep_command(CLI::App& app);
 
+/// `tcasim inverse SCENARIO --target-m X,Y,Z [--actuators a,b] [--max-temperature-degC T] [--out F]`
+void add_inverse_command(CLI::App& app);
+/// `tcasim grasp SCENARIO --mass-g M --friction MU --fingers N [--max-temperature-degC T] [--out F]`
+void add_grasp_command(CLI::App& app);
+/// `tcasim compare SCENARIO [--elements N,...] [--orders 1,2] [--out CSV]`: FE vs shooting table
+void add_compare_command(CLI::App& app);
+/// `tcasim converge SCENARIO --order 1|2 --levels K [--coarsest N] [--out CSV]`: FE error table
+void add_converge_command(CLI::App& app);
+
 }  // namespace tcasim::app

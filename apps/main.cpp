@@ -15,6 +15,10 @@ int main(int argc, char** argv) {
   tcasim::app::add_fit_command(app);
   tcasim::app::add_solve_command(app);
   tcasim::app::add_sweep_command(app);
+  tcasim::app::add_inverse_command(app);
+  tcasim::app::add_grasp_command(app);
+  tcasim::app::add_compare_command(app);
+  tcasim::app::add_converge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

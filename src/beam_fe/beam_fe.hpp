@@ -55,6 +55,9 @@ struct State {
   std::vector<Eigen::Vector3d> p_W_m;       ///< nodal centerline positions
   std::vector<Eigen::Quaterniond> q_WB;     ///< nodal triads (unit quaternions)
   std::vector<double> tensions_N;           ///< per actuator, tension of one string
+  /// With a tip_constraint: the force the holder applies to the rod at the tip (world frame);
+  /// along the normal for a normal-only contact. Zero without a constraint.
+  Eigen::Vector3d tip_reaction_W_N = Eigen::Vector3d::Zero();
   double load_factor = 0.0;                 ///< lambda of the last accepted load step
 };
 
@@ -63,20 +66,21 @@ struct Summary {
   enum class Status {
     /// At load factor 1, every residual row |r_i| <= tolerance_abs + tolerance_rel * scale
     /// + floor_i, where r holds nodal forces [N], moments [N m] and TCA rows T_i - F_tca
-    /// [N]; scale = max(||f_ext||_inf, max_i c_i |T_i|) (external nodal loads incl. the tip
-    /// moment); floor_i is the round-off level of the row (Discretization::round_off_floor:
+    /// [N] and tip-constraint rows k_c (c_j . (p_tip - p_target(lambda))) [N] (k_c =
+    /// max(EA, GA)/L, c_j the held world directions); scale = max(||f_ext||_inf, max_i c_i
+    /// |T_i|, ||tip reaction||_inf) (external nodal loads incl. the tip moment); floor_i is the round-off level of the row (Discretization::round_off_floor:
     /// 10 eps nodes max(EA, GA) for force and TCA rows, 10 eps nodes max(EI, GJ)/L plus
-    /// that times h for moment rows).
+    /// that times h for moment rows; constraint rows as force rows).
     kConverged,
     kStepTooSmall,       ///< a load increment halved below Options::min_load_step failed
     kLoadStepLimit,      ///< Options::max_load_steps attempts without reaching lambda = 1
-    kNotSupported,       ///< the model asks for something this solver cannot do
+    kNotSupported,       ///< the model asks for something this solver cannot do (none at present)
   };
   Status status = Status::kStepTooSmall;
   bool converged() const { return status == Status::kConverged; }
   int load_steps = 0;          ///< accepted load steps
   int rejected_steps = 0;      ///< failed (halved) load steps
-  int iterations = 0;          ///< Newton iterations (linear solves), all steps
+  int iterations = 0;          ///< Newton and chord iterations (linear solves), all steps
   double residual_inf = 0.0;   ///< ||r||_inf of the returned state
   double residual_scale = 0.0; ///< scale of the relative tolerance
   double load_factor = 0.0;    ///< lambda reached
@@ -110,8 +114,16 @@ class Discretization {
   int element_count() const { return elements_; }
   int order() const { return order_; }
   int node_count() const { return elements_ * order_ + 1; }
-  /// Unknowns: 6 per free node (the base node is clamped), then one per TCA actuator.
-  int dof_count() const { return 6 * (node_count() - 1) + static_cast<int>(tca_actuators_.size()); }
+  /// Unknowns: 6 per free node (the base node is clamped), then one per TCA actuator, then
+  /// the tip reaction components along the held directions (3 pinned, 1 normal-only, 0 free).
+  int dof_count() const {
+    return 6 * (node_count() - 1) + static_cast<int>(tca_actuators_.size()) + constraint_count();
+  }
+  /// Number of held tip directions: 3 (pinned), 1 (normal-only contact) or 0.
+  int constraint_count() const { return static_cast<int>(held_directions_W_.size()); }
+  /// Prescribed tip position at load factor lambda along the held directions:
+  /// p_ref + lambda (p_target - p_ref), p_ref the stress-free tip [m, world].
+  Eigen::Vector3d tip_target_W_m(double lambda) const;
   const rod::RodModel& model() const { return *model_; }
 
   /// The stress-free reference configuration (exact arc of constant omega*), tensions 0.
@@ -122,7 +134,8 @@ class Discretization {
   Eigen::VectorXd residual(const State& state, double lambda,
                            Eigen::SparseMatrix<double>* tangent = nullptr) const;
 
-  /// Applies an increment dx (dof_count) to a state: p += dp, R <- R exp(dtheta), T += dT.
+  /// Applies an increment dx (dof_count) to a state: p += dp, R <- R exp(dtheta), T += dT,
+  /// tip reaction += sum_j c_j dF_j.
   void retract(State& state, const Eigen::VectorXd& dx) const;
 
   /// One element with string tensions `tensions_N` (per actuator, one string).
@@ -148,6 +161,18 @@ class Discretization {
   bool within_tolerance(const Eigen::VectorXd& r, const State& state, double lambda,
                         const Options& options) const;
 
+  /// The increment dx with retract(b, dx) = a (positions, rotation logarithms, TCA tensions,
+  /// reaction components): used to extrapolate converged load steps.
+  Eigen::VectorXd difference(const State& a, const State& b) const;
+
+  /// Constant-strain predictor at load factor lambda: the exact solution of straight strings
+  /// at constant offsets without gravity, tip loads or tip constraint (conventions.md closed
+  /// form, with TCA tensions from a small Newton solve of T_i = F_tca(delta_i(T))). Gravity,
+  /// tip loads and the tip constraint are ignored (it is a starting guess; the reaction is 0).
+  /// False, with `state` untouched, without actuators (the guess would be the reference),
+  /// for helical routing, or when the TCA law cannot be evaluated.
+  bool constant_strain_guess(double lambda, State& state) const;
+
   /// Sets the tensions of tension drives to lambda times their value.
   void apply_prescribed_tensions(State& state, double lambda) const;
 
@@ -163,6 +188,10 @@ class Discretization {
   std::vector<int> tca_unknown_;    // per actuator: its TCA unknown or -1
   std::vector<double> start_temperature_K_;  // per actuator: temperature at lambda = 0
   Eigen::VectorXd nodal_dead_load_;  // gravity + tip force on free-node dofs (lambda = 1)
+  std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
+  Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position
+  Eigen::Vector3d tip_goal_W_m_ = Eigen::Vector3d::Zero();       // tip_constraint.position
+  double constraint_stiffness_N_m_ = 0.0;  // k_c = max(EA, GA)/L: constraint rows in N
 
   /// Builds the tangent's pattern and the position of every element entry in its values.
   void assemble_pattern(Eigen::SparseMatrix<double>& K) const;
@@ -170,15 +199,22 @@ class Discretization {
                         bool with_tangent, ElementEvaluation& out) const;
   mutable std::vector<int> element_slots_;  // per element, (6 n)^2 value indices or -1
   mutable std::vector<int> tca_slots_;      // per TCA unknown: row then column entries, then diagonal
+  mutable std::vector<int> constraint_slots_;  // per held direction: 3 row, then 3 column entries
 };
 
 /// Solves the model from `state` (warm start if it matches the mesh, else from the
 /// reference configuration), ramping loads and actuation with a load factor lambda = 0 -> 1
 /// in adaptive steps (halve on failure, double after convergence within 4 iterations):
 /// gravity, tip wrench and tension drives scale with lambda; TCA temperatures ramp from the
-/// material's reference temperature to their targets. Each step runs Newton with full steps
-/// (backtracking only out of the model's domain). Throws InputError for bad options; never
-/// throws for non-convergence: `state` then holds the last accepted configuration.
+/// material's reference temperature to their targets; a tip_constraint's target moves from the
+/// stress-free tip p_ref to p_ref + lambda (p_target - p_ref) (along the normal for a contact).
+/// A step from the unloaded state starts from the constant-strain predictor (constant_strain_guess); later steps from the secant extrapolation of the last
+/// two accepted states (a failed predicted start is retried from the last accepted state).
+/// Each step runs Newton with full steps (backtracking only out of the model's domain); once
+/// the residual contracts by 1e-2 per iteration the last factorization is reused (chord steps)
+/// until the contraction degrades. KLU pivots once and then refactorizes with that pivot order
+/// while its condition estimate holds. Throws InputError for bad options; never throws for
+/// non-convergence: `state` then holds the last accepted configuration.
 Summary solve(const rod::RodModel& model, const Options& options, State& state);
 
 /// Fills a result file record: method "fe", discretization {elements, order}, tip pose,

@@ -102,6 +102,27 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
     }
   }
   nodal_dead_load_.segment<3>(6 * (nodes - 2)) += model.tip_force_W_N;
+
+  // Tip constraint: held world directions (all three when pinned, the normal for a contact),
+  // target ramped from the stress-free tip (exact arc of omega*, as reference_state).
+  const Vector3d phi_L = model.length_m * model.reference_curvature_B_1_m;
+  tip_reference_W_m_ = model.base_position_W_m +
+                       model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
+  if (model.tip_constraint) {
+    tip_goal_W_m_ = model.tip_constraint->position_W_m;
+    if (model.tip_constraint->normal_W) {
+      const Vector3d n = *model.tip_constraint->normal_W;
+      require(n.allFinite() && n.norm() > 0.0, "tip_constraint.normal", n.norm(), "must be non-zero");
+      held_directions_W_ = {n.normalized()};
+    } else {
+      held_directions_W_ = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
+    }
+    constraint_stiffness_N_m_ = model.shear_extension_stiffness().maxCoeff() / model.length_m;
+  }
+}
+
+Vector3d Discretization::tip_target_W_m(double lambda) const {
+  return tip_reference_W_m_ + lambda * (tip_goal_W_m_ - tip_reference_W_m_);
 }
 
 State Discretization::reference_state() const {
@@ -119,6 +140,7 @@ State Discretization::reference_state() const {
     st.q_WB.push_back((q0 * so3::exp_quaternion(phi)).normalized());
   }
   st.tensions_N.assign(model.actuators.size(), 0.0);
+  st.tip_reaction_W_N.setZero();
   st.load_factor = 0.0;
   return st;
 }
@@ -139,6 +161,110 @@ void Discretization::retract(State& state, const VectorXd& dx) const {
   for (std::size_t j = 0; j < tca_actuators_.size(); ++j) {
     state.tensions_N[tca_actuators_[j]] += dx[6 * (nodes - 1) + static_cast<int>(j)];
   }
+  const int first_constraint = 6 * (nodes - 1) + static_cast<int>(tca_actuators_.size());
+  for (int j = 0; j < constraint_count(); ++j) {
+    state.tip_reaction_W_N += dx[first_constraint + j] * held_directions_W_[j];
+  }
+}
+
+VectorXd Discretization::difference(const State& a, const State& b) const {
+  const int nodes = node_count();
+  VectorXd dx = VectorXd::Zero(dof_count());
+  for (int k = 1; k < nodes; ++k) {
+    dx.segment<3>(6 * (k - 1)) = a.p_W_m[k] - b.p_W_m[k];
+    dx.segment<3>(6 * (k - 1) + 3) = so3::log(b.q_WB[k].conjugate() * a.q_WB[k]);
+  }
+  for (std::size_t j = 0; j < tca_actuators_.size(); ++j) {
+    dx[6 * (nodes - 1) + static_cast<int>(j)] = a.tensions_N[tca_actuators_[j]] - b.tensions_N[tca_actuators_[j]];
+  }
+  const int first_constraint = 6 * (nodes - 1) + static_cast<int>(tca_actuators_.size());
+  for (int j = 0; j < constraint_count(); ++j) {
+    dx[first_constraint + j] = held_directions_W_[j].dot(a.tip_reaction_W_N - b.tip_reaction_W_N);
+  }
+  return dx;
+}
+
+bool Discretization::constant_strain_guess(double lambda, State& state) const {
+  const rod::RodModel& model = *model_;
+  const std::size_t n_act = model.actuators.size();
+  if (n_act == 0) return false;  // the guess would be the reference configuration itself
+  for (const rod::Actuator& a : model.actuators) {
+    if (a.routing.type != rod::Routing::Type::kStraight) return false;
+  }
+  const Vector3d Kn = model.shear_extension_stiffness(), Ko = model.bending_torsion_stiffness();
+  std::vector<Vector3d> r(n_act);
+  for (std::size_t i = 0; i < n_act; ++i) r[i] = model.actuators[i].routing.r(0.0);
+  // conventions.md closed form: nu_3 = 1 - sum c T / EA, omega_x = omega*_x - sum c T r_y / EI_x,
+  // omega_y = omega*_y + sum c T r_x / EI_y; with d(nu, omega)/dT_j the linear map below.
+  auto strains = [&](const std::vector<double>& T, Vector3d& nu, Vector3d& omega) {
+    nu = Vector3d::UnitZ();
+    omega = model.reference_curvature_B_1_m;
+    for (std::size_t j = 0; j < n_act; ++j) {
+      const double cT = model.actuators[j].count * T[j];
+      nu.z() -= cT / Kn.z();
+      omega.x() -= cT * r[j].y() / Ko.x();
+      omega.y() += cT * r[j].x() / Ko.y();
+    }
+  };
+  std::vector<double> T(n_act, 0.0);
+  for (std::size_t i = 0; i < n_act; ++i) {
+    if (model.actuators[i].drive.type == rod::Drive::Type::kTension) T[i] = lambda * model.actuators[i].drive.tension_N;
+  }
+  const std::size_t k = tca_actuators_.size();
+  if (k > 0) {
+    // Newton on g_i = T_i - F_tca(l_i(T) - rest_i), l_i = L |nu + omega x r_i| (exact for
+    // constant strains and straight strings).
+    constexpr int kMaxTensionIterations = 30;
+    constexpr double kTensionTolerance = 1e-13;  // relative: far below the FE's own tolerance
+    try {
+      for (int it = 0; it < kMaxTensionIterations; ++it) {
+        Vector3d nu, omega;
+        strains(T, nu, omega);
+        Eigen::VectorXd g(k);
+        Eigen::MatrixXd J = Eigen::MatrixXd::Identity(k, k);
+        double size = 0.0;
+        for (std::size_t a = 0; a < k; ++a) {
+          const int i = tca_actuators_[a];
+          const rod::Actuator& act = model.actuators[i];
+          const Vector3d q = nu + omega.cross(r[i]);
+          const Vector3d qh = q.normalized();
+          const TcaTension f =
+              tca_tension(act, model.length_m * q.norm() - act.rest_length_m, start_temperature_K_[i], lambda);
+          g[a] = T[i] - f.tension_N;
+          size = std::max(size, std::abs(f.tension_N));
+          for (std::size_t b = 0; b < k; ++b) {
+            const int j = tca_actuators_[b];
+            const double c = model.actuators[j].count;
+            const Vector3d dnu(0.0, 0.0, -c / Kn.z());
+            const Vector3d domega(-c * r[j].y() / Ko.x(), c * r[j].x() / Ko.y(), 0.0);
+            const double dl = model.length_m * qh.dot(dnu + domega.cross(r[i]));
+            J(a, b) -= f.dF_ddelta_N_m * dl;
+          }
+        }
+        const Eigen::VectorXd dT = J.partialPivLu().solve(-g);
+        if (!dT.allFinite()) return false;
+        for (std::size_t a = 0; a < k; ++a) T[tca_actuators_[a]] += dT[a];
+        if (dT.lpNorm<Eigen::Infinity>() <= kTensionTolerance * std::max(size, 1e-300)) break;
+      }
+    } catch (const DomainError&) {
+      return false;
+    }
+  }
+  Vector3d nu, omega;
+  strains(T, nu, omega);
+  if (!nu.allFinite() || !omega.allFinite()) return false;
+  State st = reference_state();
+  const Eigen::Quaterniond q0(model.R_WB0);
+  for (std::size_t n = 0; n < st.s_m.size(); ++n) {
+    const double s = st.s_m[n];
+    // Constant strains: R = R0 exp(s omega), p = p0 + R0 s Jl(s omega) nu.
+    st.p_W_m[n] = model.base_position_W_m + model.R_WB0 * (s * so3::left_jacobian(s * omega) * nu);
+    st.q_WB[n] = (q0 * so3::exp_quaternion(s * omega)).normalized();
+  }
+  st.tensions_N = T;
+  st.load_factor = state.load_factor;
+  state = std::move(st);
+  return true;
 }
 
 std::vector<double> Discretization::string_lengths(const State& state) const {
@@ -157,6 +283,7 @@ double Discretization::residual_scale(const State& state, double lambda) const {
   for (std::size_t i = 0; i < model_->actuators.size(); ++i) {
     scale = std::max(scale, model_->actuators[i].count * std::abs(state.tensions_N[i]));
   }
+  if (constraint_count() > 0) scale = std::max(scale, state.tip_reaction_W_N.cwiseAbs().maxCoeff());
   return scale;
 }
 
@@ -188,7 +315,7 @@ bool Discretization::within_tolerance(const VectorXd& r, const State& state, dou
 
 namespace {
 /// Index of entry (i, j) in the values of a compressed column-major matrix.
-int slot(const Eigen::SparseMatrix<double>& K, int i, int j) {
+[[maybe_unused]] int slot(const Eigen::SparseMatrix<double>& K, int i, int j) {
   const int* inner = K.innerIndexPtr();
   const int* begin = inner + K.outerIndexPtr()[j];
   const int* end = inner + K.outerIndexPtr()[j + 1];
@@ -199,46 +326,93 @@ int slot(const Eigen::SparseMatrix<double>& K, int i, int j) {
 }  // namespace
 
 void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
+  // Built directly in compressed column form: the rows of a free node's column are the dofs
+  // of the contiguous node range of the elements containing it, then every TCA row, then
+  // (tip position columns) the constraint rows. A TCA column holds all free and TCA rows; a
+  // constraint column the tip position rows. Every slot follows by arithmetic.
   const int n = dof_count();
-  const int free_dofs = 6 * (node_count() - 1);
-  std::vector<Eigen::Triplet<double>> trip;
-  const int nd = 6 * (order_ + 1);
-  for (int e = 0; e < elements_; ++e) {
-    for (int i = 0; i < nd; ++i) {
-      const int gi = 6 * (e * order_) + i - 6;
-      if (gi < 0) continue;
-      for (int j = 0; j < nd; ++j) {
-        const int gj = 6 * (e * order_) + j - 6;
-        if (gj >= 0) trip.emplace_back(gi, gj, 0.0);
-      }
+  const int nodes = node_count();
+  const int free_dofs = 6 * (nodes - 1);
+  const int n_tca = static_cast<int>(tca_actuators_.size());
+  const int tca_end = free_dofs + n_tca;
+  const int tip_pos = free_dofs - 6;
+  std::vector<int> first_row(free_dofs), range_rows(free_dofs);
+  std::vector<int> outer(n + 1, 0);
+  for (int j = 0; j < n; ++j) {
+    int count;
+    if (j < free_dofs) {
+      const int k = j / 6 + 1;  // node of this column
+      const int e_first = (k - 1) / order_, e_last = std::min(elements_ - 1, k / order_);
+      const int lo = std::max(e_first * order_, 1), hi = (e_last + 1) * order_;
+      first_row[j] = 6 * (lo - 1);
+      range_rows[j] = 6 * (hi - lo + 1);
+      count = range_rows[j] + n_tca + (j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0);
+    } else if (j < tca_end) {
+      count = tca_end;
+    } else {
+      count = 3;
     }
-  }
-  for (int t = free_dofs; t < n; ++t) {
-    for (int k = 0; k < n; ++k) {
-      trip.emplace_back(t, k, 0.0);
-      if (k < free_dofs) trip.emplace_back(k, t, 0.0);
-    }
+    outer[j + 1] = outer[j] + count;
   }
   K.resize(n, n);
-  K.setFromTriplets(trip.begin(), trip.end());
-  K.makeCompressed();
-  // Where each element entry and each bordered entry lives in K's values.
+  K.resizeNonZeros(outer[n]);
+  std::copy(outer.begin(), outer.end(), K.outerIndexPtr());
+  int* inner = K.innerIndexPtr();
+  for (int j = 0; j < n; ++j) {
+    int* it = inner + outer[j];
+    if (j < free_dofs) {
+      for (int i = 0; i < range_rows[j]; ++i) *it++ = first_row[j] + i;
+      for (int t = free_dofs; t < tca_end; ++t) *it++ = t;
+      if (j >= tip_pos && j < tip_pos + 3) {
+        for (int c = tca_end; c < n; ++c) *it++ = c;
+      }
+    } else if (j < tca_end) {
+      for (int i = 0; i < tca_end; ++i) *it++ = i;
+    } else {
+      for (int i = 0; i < 3; ++i) *it++ = tip_pos + i;
+    }
+  }
+  std::fill(K.valuePtr(), K.valuePtr() + outer[n], 0.0);
+  assert(K.isCompressed());
+
+  const int nd = 6 * (order_ + 1);
   element_slots_.assign(static_cast<std::size_t>(elements_) * nd * nd, -1);
   for (int e = 0; e < elements_; ++e) {
-    for (int i = 0; i < nd; ++i) {
-      const int gi = 6 * (e * order_) + i - 6;
-      for (int j = 0; j < nd; ++j) {
-        const int gj = 6 * (e * order_) + j - 6;
-        if (gi >= 0 && gj >= 0) element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] = slot(K, gi, gj);
+    for (int j = 0; j < nd; ++j) {
+      const int gj = 6 * (e * order_) + j - 6;
+      if (gj < 0) continue;
+      for (int i = 0; i < nd; ++i) {
+        const int gi = 6 * (e * order_) + i - 6;
+        if (gi < 0) continue;
+        assert(gi >= first_row[gj] && gi < first_row[gj] + range_rows[gj]);
+        element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] = outer[gj] + gi - first_row[gj];
       }
     }
   }
   tca_slots_.clear();
-  for (int t = free_dofs; t < n; ++t) {
-    for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(slot(K, t, k));
-    for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(slot(K, k, t));
-    tca_slots_.push_back(slot(K, t, t));
+  for (int t = free_dofs; t < tca_end; ++t) {
+    for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(outer[k] + range_rows[k] + (t - free_dofs));
+    for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(outer[t] + k);
+    tca_slots_.push_back(outer[t] + t);
   }
+  constraint_slots_.clear();
+  for (int c = tca_end; c < n; ++c) {
+    for (int i = 0; i < 3; ++i) constraint_slots_.push_back(outer[tip_pos + i] + range_rows[tip_pos + i] + n_tca + (c - tca_end));
+    for (int i = 0; i < 3; ++i) constraint_slots_.push_back(outer[c] + i);
+  }
+#ifndef NDEBUG
+  for (int e = 0; e < elements_; ++e)
+    for (int i = 0; i < nd; ++i)
+      for (int j = 0; j < nd; ++j) {
+        const int gi = 6 * (e * order_) + i - 6, gj = 6 * (e * order_) + j - 6;
+        if (gi >= 0 && gj >= 0) assert(element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] == slot(K, gi, gj));
+      }
+  for (int c = tca_end; c < n; ++c)
+    for (int i = 0; i < 3; ++i) {
+      assert(constraint_slots_[6 * (c - tca_end) + i] == slot(K, c, tip_pos + i));
+      assert(constraint_slots_[6 * (c - tca_end) + 3 + i] == slot(K, tip_pos + i, c));
+    }
+#endif
 }
 
 VectorXd Discretization::residual(const State& state, double lambda,
@@ -305,6 +479,25 @@ VectorXd Discretization::residual(const State& state, double lambda,
       values[slots[free_dofs + k]] += act.count * dl[a][k];
     }
     values[slots[2 * free_dofs]] += 1.0;
+  }
+  // Tip constraint (Lagrange multipliers = reaction components F_j along c_j): the holder's
+  // force F = sum_j F_j c_j acts on the tip node (r = internal - external - F), and each
+  // held direction gets the row k_c c_j . (p_tip - p_ref - lambda (p_target - p_ref)).
+  const int tip_pos = free_dofs - 6;
+  const int first_constraint = free_dofs + static_cast<int>(tca_actuators_.size());
+  if (constraint_count() > 0) {
+    r.segment<3>(tip_pos) -= state.tip_reaction_W_N;
+    const Vector3d gap = state.p_W_m.back() - tip_target_W_m(lambda);
+    for (int j = 0; j < constraint_count(); ++j) {
+      const Vector3d& c = held_directions_W_[j];
+      r[first_constraint + j] = constraint_stiffness_N_m_ * c.dot(gap);
+      if (!tangent) continue;
+      const int* slots = &constraint_slots_[6 * static_cast<std::size_t>(j)];
+      for (int i = 0; i < 3; ++i) {
+        values[slots[i]] += constraint_stiffness_N_m_ * c[i];
+        values[slots[3 + i]] -= c[i];
+      }
+    }
   }
   return r;
 }

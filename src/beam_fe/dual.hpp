@@ -1,7 +1,8 @@
 #pragma once
-/// Forward-mode dual numbers (nestable) and the few rotation formulas the element
-/// kernel differentiates with them: exp, Jr and Jr^-1 as functions of a rotation
-/// vector. Internal to beam_fe. The double-valued versions are src/common/so3 (tests
+/// Forward-mode dual numbers (nestable) and the rotation formulas exp, Jr and Jr^-1 as
+/// functions of a rotation vector. The element kernel differentiates only the scalar
+/// coefficients a, b, c, d of t^2 with them (nested scalar duals give their first and second
+/// t^2-derivatives); the matrix formulas are kept for tests. Internal to beam_fe. The double-valued versions are src/common/so3 (tests
 /// compare these against it); here the coefficients are functions of t^2 = |phi|^2, so
 /// they stay smooth (and differentiable twice) through phi = 0.
 #include <array>

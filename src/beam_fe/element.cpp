@@ -13,8 +13,10 @@
 //   K = B^T H_u B + (second derivatives of u(theta) contracted with dE/du)
 //       + 1/2 hat(r_theta,a) on each node's rotation block,
 // the last term from exp(eta) exp(theta) = exp(eta + theta + eta x theta / 2 + ...).
-// Second derivatives of the strain map in psi and first derivatives of Jr^-1 come from
-// forward-mode dual numbers (dual.hpp); everything else is closed form.
+// The strain map's coefficients a, b, c, d are functions of t^2 = |psi|^2 only; their first
+// and second t^2-derivatives come from scalar nested dual numbers (dual.hpp), and every
+// psi-derivative (first derivatives of the strains and of Jr^-1, second derivatives of the
+// strain map contracted with the stresses) is written in closed form from them.
 #include <cmath>
 
 #include "beam_fe/beam_fe.hpp"
@@ -28,8 +30,6 @@ using Eigen::Matrix3d;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
-using D3 = ad::Dual<double, 3>;
-using DD3 = ad::Dual<D3, 3>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
@@ -52,44 +52,63 @@ void shape(int order, double xi, double* N, double* dN_dxi) {
   }
 }
 
-/// A rotation vector as duals seeded with the unit directions.
-template <class S>
-ad::V3<S> seeded(const Vector3d& v);
-template <>
-ad::V3<D3> seeded<D3>(const Vector3d& v) {
-  ad::V3<D3> r;
-  for (int k = 0; k < 3; ++k) {
-    r[k] = D3(v[k]);
-    r[k].d[k] = 1.0;
-  }
-  return r;
-}
-template <>
-ad::V3<DD3> seeded<DD3>(const Vector3d& v) {
-  ad::V3<DD3> r;
-  for (int k = 0; k < 3; ++k) {
-    r[k] = DD3(v[k]);
-    r[k].v.d[k] = 1.0;
-    r[k].d[k] = D3(1.0);
-  }
-  return r;
+/// The coefficients a, b, c, d (dual.hpp) at t2 = |psi|^2 and their first and second
+/// derivatives with respect to t2, from a scalar nested dual seeded on t2.
+struct CoefficientJet {
+  ad::Coefficients<double> f, df, ddf;
+};
+CoefficientJet coefficient_jet(double t2) {
+  using S1 = ad::Dual<double, 1>;
+  using S2 = ad::Dual<S1, 1>;
+  S2 x(t2);
+  x.v.d[0] = 1.0;
+  x.d[0] = S1(1.0);
+  const ad::Coefficients<S2> k = ad::coefficients(x);
+  CoefficientJet j;
+  auto unpack = [](const S2& y, double& f, double& df, double& ddf) {
+    f = y.v.v;
+    df = y.v.d[0];
+    ddf = y.d[0].d[0];
+  };
+  unpack(k.a, j.f.a, j.df.a, j.ddf.a);
+  unpack(k.b, j.f.b, j.df.b, j.ddf.b);
+  unpack(k.c, j.f.c, j.df.c, j.ddf.c);
+  unpack(k.d, j.f.d, j.df.d, j.ddf.d);
+  return j;
 }
 
-/// Jacobian d(vec)/dpsi of a D3-valued 3-vector.
-Matrix3d jacobian(const ad::V3<D3>& v) {
-  Matrix3d J;
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) J(i, k) = v[i].d[k];
+/// v + alpha x × v + beta (x (x.v) - t2 v) with t2 = |x|^2: exp(x)^T v for (alpha, beta) =
+/// (-a, b), exp(x) v for (a, b), Jr(x) v for (-b, c), Jr(x)^T v for (b, c).
+Vector3d rotation_operator(const Vector3d& x, double t2, double alpha, double beta, const Vector3d& v) {
+  return v + alpha * x.cross(v) + beta * (x * x.dot(v) - t2 * v);
+}
+/// Its Jacobian in x, with dalpha, dbeta the t2-derivatives of alpha, beta:
+///   2 alpha' (x × v) x^T - alpha hat(v) + 2 beta' (x (x.v) - t2 v) x^T
+///   + beta ((x.v) I + x v^T - 2 v x^T).
+Matrix3d rotation_operator_jacobian(const Vector3d& x, double t2, double alpha, double dalpha, double beta,
+                                    double dbeta, const Vector3d& v) {
+  const double xv = x.dot(v);
+  Matrix3d J = (2.0 * dalpha * x.cross(v) + 2.0 * dbeta * (x * xv - t2 * v)) * x.transpose();
+  J -= alpha * so3::hat(v);
+  J += beta * (xv * Matrix3d::Identity() + x * v.transpose() - 2.0 * v * x.transpose());
   return J;
 }
-
-template <class S>
-ad::V3<S> rotation_operator(const ad::V3<S>& x, const S& t2, const S& alpha, const S& beta, const Vector3d& v) {
-  const S xv = x[0] * v[0] + x[1] * v[1] + x[2] * v[2];
-  const ad::V3<S> xc = {x[1] * v[2] - x[2] * v[1], x[2] * v[0] - x[0] * v[2], x[0] * v[1] - x[1] * v[0]};
-  ad::V3<S> r;
-  for (int i = 0; i < 3; ++i) r[i] = v[i] + alpha * xc[i] + beta * (x[i] * xv - t2 * v[i]);
-  return r;
+/// Hessian in x of f(t2) (x.u): 4 f'' (x.u) x x^T + 2 f' ((x.u) I + x u^T + u x^T).
+void add_linear_term_hessian(Matrix3d& H, const Vector3d& x, double f1, double f2, const Vector3d& u) {
+  const double xu = x.dot(u);
+  H += 4.0 * f2 * xu * x * x.transpose();
+  H += 2.0 * f1 * (xu * Matrix3d::Identity() + x * u.transpose() + u * x.transpose());
+}
+/// Hessian in x of g(t2) Q, Q = (x.v)(x.w) - t2 (v.w), grad Q = v (x.w) + w (x.v) - 2 (v.w) x:
+///   4 g'' Q x x^T + 2 g' (Q I + x gradQ^T + gradQ x^T) + g (v w^T + w v^T - 2 (v.w) I).
+void add_quadratic_term_hessian(Matrix3d& H, const Vector3d& x, double t2, double g, double g1, double g2,
+                                const Vector3d& v, const Vector3d& w) {
+  const double xv = x.dot(v), xw = x.dot(w), vw = v.dot(w);
+  const double Q = xv * xw - t2 * vw;
+  const Vector3d gQ = v * xw + w * xv - 2.0 * vw * x;
+  H += 4.0 * g2 * Q * x * x.transpose();
+  H += 2.0 * g1 * (Q * Matrix3d::Identity() + x * gQ.transpose() + gQ * x.transpose());
+  H += g * (v * w.transpose() + w * v.transpose() - 2.0 * vw * Matrix3d::Identity());
 }
 
 template <int kOrder>
@@ -123,13 +142,14 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     if (a == ref) continue;
     // A = Jr^-1(psi) = I + K/2 + d K^2 (K = hat(psi)); dA/dpsi_k = hat(e_k)/2 + (dd/dpsi_k) K^2
     // + d (hat(e_k) K + K hat(e_k)), with dd/dpsi_k from dual numbers.
-    const ad::V3<D3> x = seeded<D3>(psi[a]);
-    const D3 d = ad::coefficients(ad::dot(x, x)).d;
+    // dd/dpsi_k = 2 d'(t2) psi_k.
+    const CoefficientJet jet = coefficient_jet(psi[a].squaredNorm());
     const Matrix3d K = so3::hat(psi[a]);
-    A[a] = Matrix3d::Identity() + 0.5 * K + d.v * K * K;
+    const Matrix3d K2 = K * K;
+    A[a] = Matrix3d::Identity() + 0.5 * K + jet.f.d * K2;
     for (int k = 0; k < 3; ++k) {
       const Matrix3d Ek = so3::hat(Vector3d::Unit(k));
-      dA[a][k] = 0.5 * Ek + d.d[k] * K * K + d.v * (Ek * K + K * Ek);
+      dA[a][k] = 0.5 * Ek + 2.0 * jet.df.d * psi[a][k] * K2 + jet.f.d * (Ek * K + K * Ek);
     }
   }
 
@@ -152,18 +172,16 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
       pp += dN[a] * psi[a];
     }
     // Strains and their psi-derivatives: nu = exp(psi)^T y', omega = Jr(psi) psi'.
-    const ad::V3<D3> psd = seeded<D3>(ps);
-    const D3 t2d = ad::dot(psd, psd);
-    const ad::Coefficients<D3> kd = ad::coefficients(t2d);
-    const ad::V3<D3> nu_d = rotation_operator(psd, t2d, -kd.a, kd.b, yp);  // exp(psi)^T y'
-    const ad::V3<D3> om_d = rotation_operator(psd, t2d, -kd.b, kd.c, pp);  // Jr(psi) psi'
-    Vector3d nu, omega;
-    for (int i = 0; i < 3; ++i) {
-      nu[i] = nu_d[i].v;
-      omega[i] = om_d[i].v;
-    }
-    const Matrix3d E_val = so3::exp(ps);
-    const Matrix3d Jr_val = so3::right_jacobian(ps);
+    const double t2 = ps.squaredNorm();
+    const CoefficientJet jet = coefficient_jet(t2);
+    const ad::Coefficients<double>& k0 = jet.f;
+    const ad::Coefficients<double>& k1 = jet.df;
+    const Vector3d nu = rotation_operator(ps, t2, -k0.a, k0.b, yp);     // exp(psi)^T y'
+    const Vector3d omega = rotation_operator(ps, t2, -k0.b, k0.c, pp);  // Jr(psi) psi'
+    const Matrix3d Kp = so3::hat(ps);
+    const Matrix3d Kp2 = Kp * Kp;
+    const Matrix3d E_val = Matrix3d::Identity() + k0.a * Kp + k0.b * Kp2;    // exp(psi)
+    const Matrix3d Jr_val = Matrix3d::Identity() - k0.b * Kp + k0.c * Kp2;   // Jr(psi)
     // Constitutive law and strings: sigma = dW/deps, C = d2W/deps2.
     // [Pawlowski2019] Eqs. (11)-(12): n_B = K_nu (nu - e3), m_B = K_omega (omega - omega*).
     Vector6d sigma;
@@ -193,8 +211,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     // F = deps/d(y', psi, psi').
     Eigen::Matrix<double, 6, 9> F = Eigen::Matrix<double, 6, 9>::Zero();
     F.block<3, 3>(0, 0) = E_val.transpose();
-    F.block<3, 3>(0, 3) = jacobian(nu_d);
-    F.block<3, 3>(3, 3) = jacobian(om_d);
+    F.block<3, 3>(0, 3) = rotation_operator_jacobian(ps, t2, -k0.a, -k1.a, k0.b, k1.b, yp);
+    F.block<3, 3>(3, 3) = rotation_operator_jacobian(ps, t2, -k0.b, -k1.b, k0.c, k1.c, pp);
     F.block<3, 3>(3, 6) = Jr_val;
 
     // Gather matrix G: g = G u.
@@ -204,37 +222,35 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
       Gm.template block<3, 3>(3, 3 * n + 3 * a) = N[a] * Matrix3d::Identity();
       Gm.template block<3, 3>(6, 3 * n + 3 * a) = dN[a] * Matrix3d::Identity();
     }
-    const Vector9d grad_g = F.transpose() * sigma;
-    grad_u.noalias() += wj * Gm.transpose() * grad_g;
-    for (std::size_t i = 0; i < n_act; ++i) dl_u[i].noalias() += wj * Gm.transpose() * (F.transpose() * dl_eps[i]);
+    const Vector9d grad_g = F.transpose().lazyProduct(sigma);
+    grad_u.noalias() += Gm.transpose().lazyProduct(wj * grad_g);
+    for (std::size_t i = 0; i < n_act; ++i) dl_u[i].noalias() += Gm.transpose().lazyProduct(wj * F.transpose().lazyProduct(dl_eps[i]));
     if (!with_tangent) continue;
 
     // S = sum_k sigma_k d2 eps_k / dg2: only blocks involving psi are non-zero.
     Matrix9d S = Matrix9d::Zero();
-    const Matrix3d S_yp_psi = jacobian(rotation_operator(psd, t2d, kd.a, kd.b, s_nu));  // d(exp(psi) s_nu)/dpsi
-    const Matrix3d S_pp_psi = jacobian(rotation_operator(psd, t2d, kd.b, kd.c, s_om));  // d(Jr^T s_om)/dpsi
+    // d(exp(psi) s_nu)/dpsi and d(Jr(psi)^T s_om)/dpsi.
+    const Matrix3d S_yp_psi = rotation_operator_jacobian(ps, t2, k0.a, k1.a, k0.b, k1.b, s_nu);
+    const Matrix3d S_pp_psi = rotation_operator_jacobian(ps, t2, k0.b, k1.b, k0.c, k1.c, s_om);
     S.block<3, 3>(0, 3) = S_yp_psi;
     S.block<3, 3>(3, 0) = S_yp_psi.transpose();
     S.block<3, 3>(6, 3) = S_pp_psi;
     S.block<3, 3>(3, 6) = S_pp_psi.transpose();
     {
-      // s(psi) = s_nu . exp(psi)^T y' + s_om . Jr(psi) psi' written with scalar triple
-      // products (a x b . c = a . (b x c)) so the nested duals see few operations:
-      //   exp(psi)^T y' = y' - a psi x y' + b (psi (psi . y') - t^2 y'),
-      //   Jr(psi) psi'  = psi' - b psi x psi' + c (psi (psi . psi') - t^2 psi').
-      const ad::V3<DD3> x = seeded<DD3>(ps);
-      const ad::Coefficients<DD3> k = ad::coefficients(ad::dot(x, x));
-      const Vector3d y_x_s = yp.cross(s_nu), p_x_s = pp.cross(s_om);
-      auto dot_const = [&](const Vector3d& v) { return x[0] * v[0] + x[1] * v[1] + x[2] * v[2]; };
-      const DD3 t2 = ad::dot(x, x);
-      const DD3 s = -1.0 * k.a * dot_const(y_x_s) +
-                    k.b * (dot_const(s_nu) * dot_const(yp) - t2 * s_nu.dot(yp)) -
-                    k.b * dot_const(p_x_s) +
-                    k.c * (dot_const(s_om) * dot_const(pp) - t2 * s_om.dot(pp));
-      for (int j = 0; j < 3; ++j)
-        for (int m = 0; m < 3; ++m) S(3 + j, 3 + m) = s.d[j].d[m];
+      // Hessian in psi of s(psi) = s_nu . exp(psi)^T y' + s_om . Jr(psi) psi', written with
+      // scalar triple products (a x b . c = a . (b x c)):
+      //   s = -a psi.(y' x s_nu) + b ((psi.s_nu)(psi.y') - t2 s_nu.y')
+      //       - b psi.(psi' x s_om) + c ((psi.s_om)(psi.psi') - t2 s_om.psi') + const.
+      const ad::Coefficients<double>& k2 = jet.ddf;
+      Matrix3d H = Matrix3d::Zero();
+      add_linear_term_hessian(H, ps, -k1.a, -k2.a, yp.cross(s_nu));
+      add_quadratic_term_hessian(H, ps, t2, k0.b, k1.b, k2.b, s_nu, yp);
+      add_linear_term_hessian(H, ps, -k1.b, -k2.b, pp.cross(s_om));
+      add_quadratic_term_hessian(H, ps, t2, k0.c, k1.c, k2.c, s_om, pp);
+      S.block<3, 3>(3, 3) = H;
     }
-    const Matrix9d hess_g = F.transpose() * C * F + S;
+    const Eigen::Matrix<double, 9, 6> FtC = F.transpose().lazyProduct(C);
+    const Matrix9d hess_g = FtC.lazyProduct(F) + S;
     // hess_u += wj G^T hess_g G, with G's blocks dN_a I (y'), N_a I (psi), dN_a I (psi').
     for (int a = 0; a < n; ++a) {
       const Eigen::Matrix<double, 3, 9> ya = wj * dN[a] * hess_g.template topRows<3>();
@@ -264,30 +280,30 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     B.template block<3, 3>(3 * n + 3 * a, 6 * a + 3) = A[a];
     B.template block<3, 3>(3 * n + 3 * a, phr) = -A[a].transpose();
   }
-  out.residual = B.transpose() * grad_u;
+  out.residual = B.transpose().lazyProduct(grad_u);
   out.length_gradients.resize(n_act);
-  for (std::size_t i = 0; i < n_act; ++i) out.length_gradients[i] = B.transpose() * dl_u[i];
+  for (std::size_t i = 0; i < n_act; ++i) out.length_gradients[i] = B.transpose().lazyProduct(dl_u[i]);
   if (!with_tangent) return;
   // K = B^T H B using the block sparsity of B (at most three 3x3 blocks per block row).
   MatrixU HB = MatrixU::Zero();
   for (int a = 0; a < n; ++a) {
     if (a == ref) continue;
-    const Eigen::Matrix<double, nu_dofs, 3> HyR = hess_u.template middleCols<3>(3 * a) * R_ref.transpose();
+    const Eigen::Matrix<double, nu_dofs, 3> HyR = hess_u.template middleCols<3>(3 * a).lazyProduct(R_ref.transpose());
     HB.template middleCols<3>(6 * a) += HyR;
     HB.template middleCols<3>(dr) -= HyR;
-    HB.template middleCols<3>(phr).noalias() += hess_u.template middleCols<3>(3 * a) * so3::hat(y[a]);
-    HB.template middleCols<3>(6 * a + 3).noalias() += hess_u.template middleCols<3>(3 * n + 3 * a) * A[a];
-    HB.template middleCols<3>(phr).noalias() -= hess_u.template middleCols<3>(3 * n + 3 * a) * A[a].transpose();
+    HB.template middleCols<3>(phr).noalias() += hess_u.template middleCols<3>(3 * a).lazyProduct(so3::hat(y[a]));
+    HB.template middleCols<3>(6 * a + 3).noalias() += hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a]);
+    HB.template middleCols<3>(phr).noalias() -= hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a].transpose());
   }
   MatrixU K = MatrixU::Zero();
   for (int a = 0; a < n; ++a) {
     if (a == ref) continue;
-    const Eigen::Matrix<double, 3, nu_dofs> RHy = R_ref * HB.template middleRows<3>(3 * a);
+    const Eigen::Matrix<double, 3, nu_dofs> RHy = R_ref.lazyProduct(HB.template middleRows<3>(3 * a));
     K.template middleRows<3>(6 * a) += RHy;
     K.template middleRows<3>(dr) -= RHy;
-    K.template middleRows<3>(phr).noalias() += so3::hat(y[a]).transpose() * HB.template middleRows<3>(3 * a);
-    K.template middleRows<3>(6 * a + 3).noalias() += A[a].transpose() * HB.template middleRows<3>(3 * n + 3 * a);
-    K.template middleRows<3>(phr).noalias() -= A[a] * HB.template middleRows<3>(3 * n + 3 * a);
+    K.template middleRows<3>(phr).noalias() += so3::hat(y[a]).transpose().lazyProduct(HB.template middleRows<3>(3 * a));
+    K.template middleRows<3>(6 * a + 3).noalias() += A[a].transpose().lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
+    K.template middleRows<3>(phr).noalias() -= A[a].lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
   }
   // Second derivatives of u(theta) contracted with dE/du.
   for (int a = 0; a < n; ++a) {

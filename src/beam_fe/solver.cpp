@@ -1,8 +1,8 @@
 // Newton's method with backtracking line search and adaptive load stepping.
-#include <Eigen/KLUSupport>
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
@@ -10,6 +10,10 @@
 
 #include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
+
+extern "C" {
+#include <klu.h>
+}
 
 namespace tcasim::beam_fe {
 namespace {
@@ -19,21 +23,74 @@ using SpMat = Eigen::SparseMatrix<double>;
 
 /// Backtracking halvings before a Newton step counts as failed.
 constexpr int kMaxBacktracks = 12;
+/// Residual contraction per iteration (inf norms) below which the next steps reuse the last
+/// factorization (chord steps): Newton is then in its quadratic phase, and a chord step
+/// contracts by about the relative size of the last Newton correction.
+constexpr double kChordContraction = 1e-2;
 /// Grow the load increment after a step converging within this many iterations.
 constexpr int kEasyIterations = 4;
+
+/// Accept a refactorization (pivot order of the last full factorization) while the crude
+/// reciprocal condition estimate min|U_kk|/max|U_kk| stays within this factor of the one
+/// of that full factorization; below it a pivot has degraded and KLU pivots afresh.
+constexpr double kRefactorRcondRatio = 1e-3;
+
+/// KLU with the symbolic analysis done once and the numeric factorization redone with the
+/// previous pivot order (klu_refactor) while it stays sound.
+class KluRefactoring {
+ public:
+  KluRefactoring() { klu_defaults(&common_); }
+  KluRefactoring(const KluRefactoring&) = delete;
+  KluRefactoring& operator=(const KluRefactoring&) = delete;
+  ~KluRefactoring() {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
+  }
+  /// Factorizes K (compressed, the same pattern on every call); false on failure.
+  bool factorize(SpMat& K) {
+    int* Ap = K.outerIndexPtr();
+    int* Ai = K.innerIndexPtr();
+    double* Ax = K.valuePtr();
+    const int n = static_cast<int>(K.rows());
+    if (!symbolic_) {
+      symbolic_ = klu_analyze(n, Ap, Ai, &common_);
+      if (!symbolic_) return false;
+    }
+    if (numeric_) {
+      if (klu_refactor(Ap, Ai, Ax, symbolic_, numeric_, &common_) && klu_rcond(symbolic_, numeric_, &common_) &&
+          common_.rcond >= kRefactorRcondRatio * rcond_full_) {
+        return true;
+      }
+      klu_free_numeric(&numeric_, &common_);
+    }
+    numeric_ = klu_factor(Ap, Ai, Ax, symbolic_, &common_);
+    if (!numeric_ || !klu_rcond(symbolic_, numeric_, &common_)) return false;
+    rcond_full_ = common_.rcond;
+    return common_.status == KLU_OK;
+  }
+  /// Solves K x = b with the last factorization; false on failure.
+  bool solve(const VectorXd& b, VectorXd& x) {
+    x = b;
+    return numeric_ && klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_) &&
+           common_.status == KLU_OK;
+  }
+
+ private:
+  klu_common common_;
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+  double rcond_full_ = 0.0;
+};
 
 /// The three sparse LU back ends behind one interface; the pattern is analysed once.
 class LinearSystem {
  public:
   explicit LinearSystem(LinearSolver kind) : kind_(kind) {}
   /// Factorizes K (analysing its pattern on the first call); false on failure.
-  bool factorize(const SpMat& K) {
+  bool factorize(SpMat& K) {
     switch (kind_) {
       case LinearSolver::kKlu:
-        if (!analysed_) klu_.analyzePattern(K);
-        analysed_ = true;
-        klu_.factorize(K);
-        return klu_.info() == Eigen::Success;
+        return klu_.factorize(K);
       case LinearSolver::kUmfpack:
         if (!analysed_) umf_.analyzePattern(K);
         analysed_ = true;
@@ -51,8 +108,7 @@ class LinearSystem {
   bool solve(const VectorXd& b, VectorXd& x) {
     switch (kind_) {
       case LinearSolver::kKlu:
-        x = klu_.solve(b);
-        return klu_.info() == Eigen::Success;
+        return klu_.solve(b, x);
       case LinearSolver::kUmfpack:
         x = umf_.solve(b);
         return umf_.info() == Eigen::Success;
@@ -66,7 +122,7 @@ class LinearSystem {
  private:
   LinearSolver kind_;
   bool analysed_ = false;
-  Eigen::KLU<SpMat> klu_;
+  KluRefactoring klu_;
   Eigen::UmfPackLU<SpMat> umf_;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu_;
 };
@@ -106,6 +162,9 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
   disc.apply_prescribed_tensions(st, lambda);
   VectorXd r;
   if (!evaluate(disc, st, lambda, &K, r, &out.why)) return out;
+  bool have_tangent = true;   // K is the tangent at st
+  bool factored = false;      // `linear` holds a factorization of an earlier tangent of this step
+  double contraction = std::numeric_limits<double>::infinity();  // ||r_k||/||r_k-1||, inf norms
   for (int it = 0;; ++it) {
     out.residual_inf = r.lpNorm<Eigen::Infinity>();
     out.scale = disc.residual_scale(st, lambda);
@@ -119,9 +178,22 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
       return out;
     }
     ++out.iterations;
+    // Quasi-Newton (chord) acceptance: once the residual contracts by kChordContraction per
+    // iteration, the previous factorization is reused and trial residuals are evaluated
+    // without the tangent; a poorer contraction brings the full Newton step back.
+    const bool chord = factored && !have_tangent && contraction <= kChordContraction;
+    if (!chord) {
+      if (!have_tangent && !evaluate(disc, st, lambda, &K, r, &out.why)) return out;
+      have_tangent = true;
+      if (!linear.factorize(K)) {
+        out.why = "the tangent matrix could not be factorized (singular or not finite)";
+        return out;
+      }
+      factored = true;
+    }
     VectorXd dx;
-    if (!linear.factorize(K) || !linear.solve(-r, dx) || !dx.allFinite()) {
-      out.why = "the tangent matrix could not be factorized (singular or not finite)";
+    if (!linear.solve(-r, dx) || !dx.allFinite()) {
+      out.why = "the linear solve failed (singular or not finite)";
       return out;
     }
     // Line search as a safeguard: full Newton steps are taken whenever the trial state is
@@ -131,18 +203,21 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
     // up to 1e6-fold before Newton converges quadratically), stalling Newton at small
     // alpha; globalization is by the load stepping instead: a step that does not converge
     // within max_iterations is halved.
+    // The trial's tangent is assembled with its residual (an accepted Newton step then
+    // needs no second evaluation) unless the contraction says the next step is a chord step.
+    const bool trial_tangent = contraction > kChordContraction;
     double alpha = 1.0;
     bool accepted = false;
     std::string trial_why;
     for (int b = 0; b <= kMaxBacktracks; ++b, alpha *= 0.5) {
       State trial = st;
       disc.retract(trial, alpha * dx);
-      // The trial's tangent is assembled with its residual: an accepted step then needs
-      // no second evaluation.
       VectorXd rt;
-      if (!evaluate(disc, trial, lambda, &K, rt, &trial_why)) continue;
+      if (!evaluate(disc, trial, lambda, trial_tangent ? &K : nullptr, rt, &trial_why)) continue;
       st = std::move(trial);
+      contraction = rt.lpNorm<Eigen::Infinity>() / std::max(out.residual_inf, std::numeric_limits<double>::min());
       r = std::move(rt);
+      have_tangent = trial_tangent;
       accepted = true;
       break;
     }
@@ -164,18 +239,18 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
     s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
   };
-  if (model.tip_constraint) {
-    summary.status = Summary::Status::kNotSupported;
-    summary.message = "tip_constraint is not supported by this solver yet";
-    return finish(summary);
-  }
-
   SpMat K;
   LinearSystem linear(options.linear_solver);
+  // A fresh start from the unloaded state takes the constant-strain predictor when it applies.
+  bool from_reference = state.load_factor == 0.0;
   double lambda = state.load_factor >= 1.0 ? 1.0 : state.load_factor;
   double step = std::min(options.initial_load_step, 1.0 - lambda);
   int attempts = 0;
   StepResult last;
+  // The last two accepted states: their secant extrapolates the next load step's start.
+  State previous;
+  double lambda_previous = -1.0;
+  bool use_predictor = true;
   if (lambda >= 1.0) step = 0.0;  // warm start at full load: one Newton solve at lambda = 1
   while (true) {
     if (attempts == options.max_load_steps) {
@@ -187,12 +262,26 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
     ++attempts;
     const double target = step > 0.0 ? std::min(1.0, lambda + step) : 1.0;
     State trial = state;
+    bool predicted = false;
+    if (use_predictor && step > 0.0) {
+      if (from_reference) {
+        predicted = disc.constant_strain_guess(target, trial);
+      } else if (lambda_previous >= 0.0 && lambda > lambda_previous) {
+        // Secant predictor: x(target) ~ x(lambda) + (target - lambda)/(lambda - lambda_prev) dx.
+        disc.retract(trial, (target - lambda) / (lambda - lambda_previous) * disc.difference(state, previous));
+        predicted = true;
+      }
+    }
     last = newton(disc, options, target, trial, K, linear);
     summary.iterations += last.iterations;
     if (last.converged) {
+      previous = std::move(state);
+      lambda_previous = lambda;
       state = std::move(trial);
       state.load_factor = target;
       lambda = target;
+      from_reference = false;
+      use_predictor = true;
       ++summary.load_steps;
       summary.residual_inf = last.residual_inf;
       summary.residual_scale = last.scale;
@@ -205,10 +294,18 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
       continue;
     }
     ++summary.rejected_steps;
+    if (predicted) {
+      // Retry the same increment from the last accepted state before halving it.
+      use_predictor = false;
+      continue;
+    }
+    use_predictor = true;
     if (step == 0.0) {
       // A warm start at full load failed: ramp again from the reference configuration.
       state = disc.reference_state();
       lambda = 0.0;
+      lambda_previous = -1.0;
+      from_reference = true;
       step = options.initial_load_step;
       continue;
     }
@@ -254,6 +351,7 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
     res.actuators.push_back(
         {model.actuators[i].name, state.tensions_N[i], lengths[i] - model.actuators[i].rest_length_m});
   }
+  if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;
   res.centerline_s_m = state.s_m;
   res.centerline_p_W_m = state.p_W_m;
   for (const Eigen::Quaterniond& q : state.q_WB) res.centerline_R_WB.push_back(q.toRotationMatrix());

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "cosserat/lie_rkmk4.hpp"
 
 namespace tcasim::cosserat {
 
@@ -20,13 +21,7 @@ using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-// State layout (see shooting.hpp).
-constexpr int kP = 0;
-constexpr int kR = 3;
-constexpr int kNu = 12;
-constexpr int kOmega = 15;
-constexpr int kC = 18;
-constexpr int kDelta = 21;
+using namespace state_layout;
 
 /// Forces are scaled by F_c >= kStiffnessFloor max(GA, EA): the tip force residual carries
 /// K_nu times the strain round-off accumulated over an IVP (~1e-14), so with this floor
@@ -111,6 +106,109 @@ class StrainSystem {
   Eigen::PartialPivLU<Mat6> lu_;
 };
 
+/// The strain-derivative system M z = b with the structure of docs/conventions.md:
+/// M = K + sum_i U_i A_i U_i^T, K = diag(K_nu, K_omega), U_i = [I; hat(r_i)] (6x3),
+/// A_i = alpha_i (I - qh_i qh_i^T), alpha_i = c_i T_i / |q_i|. With one loaded string the
+/// push-through (Woodbury) identity
+///   M^-1 = K^-1 - K^-1 U (I + A G)^-1 A U^T K^-1,   G = U^T K^-1 U,
+/// costs one 3x3 inverse and no 6x6 assembly; det M = det K det(I + A G), so I + A G is
+/// singular exactly when M is. With several loaded strings, or when I + A G is numerically
+/// singular, M is assembled and solved by StrainSystem.
+class StringSystem {
+ public:
+  /// K_nu, K_omega and their reciprocals (precomputed by the caller).
+  StringSystem(const Vec3& K_nu, const Vec3& K_omega, const Vec3& K_nu_inv, const Vec3& K_omega_inv)
+      : kn_(K_nu), ko_(K_omega), kn_inv_(K_nu_inv), ko_inv_(K_omega_inv) {}
+  /// Adds a loaded string at body offset r with A = alpha (I - qh qh^T).
+  void add(const Vec3& r, double alpha, const Vec3& qh) {
+    if (n_ == 0) {
+      r_ = r;
+      alpha_ = alpha;
+      qh_ = qh;
+    } else {
+      if (n_ == 1) assemble(r_, alpha_, qh_);
+      assemble(r, alpha, qh);
+    }
+    ++n_;
+  }
+  /// Factorizes after the last add.
+  void factor() {
+    if (n_ == 1) {
+      // G = K_nu^-1 + hat(r)^T K_omega^-1 hat(r), written out (symmetric).
+      const double x = r_.x(), y = r_.y(), z = r_.z();
+      const Vec3& d = ko_inv_;
+      Mat3 G;
+      G << kn_inv_.x() + d.y() * z * z + d.z() * y * y, -d.z() * x * y, -d.y() * x * z,  //
+          -d.z() * x * y, kn_inv_.y() + d.x() * z * z + d.z() * x * x, -d.x() * y * z,   //
+          -d.y() * x * z, -d.x() * y * z, kn_inv_.z() + d.x() * y * y + d.y() * x * x;
+      // W = I + A G with A G = alpha (G - qh (qh^T G)).
+      const Eigen::RowVector3d qG = qh_.transpose() * G;
+      Mat3 W = alpha_ * (G - qh_ * qG);
+      W.diagonal().array() += 1.0;
+      double det = 0.0;
+      bool invertible = false;
+      W.computeInverseAndDetWithCheck(W_inv_, det, invertible, 0.0);
+      const double scale = std::abs(W(0, 0) * W(1, 1) * W(2, 2));
+      if (invertible && std::isfinite(det) && scale > 0.0 && std::abs(det) > kSingular * scale) {
+        woodbury_ = true;
+        return;
+      }
+      assemble(r_, alpha_, qh_);
+    }
+    if (n_ >= 1) dense_.emplace(M_);
+  }
+  /// Solves M Z = R for a 6 x n right-hand side (in place).
+  template <typename Rhs>
+  void solve_in_place(Rhs& R) const {
+    if (n_ >= 1 && !woodbury_) {
+      dense_->solve_in_place(R);
+      return;
+    }
+    for (int j = 0; j < R.cols(); ++j) {
+      const Vec3 u_nu = kn_inv_.cwiseProduct(R.col(j).template head<3>());
+      const Vec3 u_om = ko_inv_.cwiseProduct(R.col(j).template tail<3>());
+      if (n_ == 0) {
+        R.col(j).template head<3>() = u_nu;
+        R.col(j).template tail<3>() = u_om;
+        continue;
+      }
+      // w = (I + A G)^-1 A U^T u with U^T u = u_nu + hat(r)^T u_om = u_nu + u_om x r.
+      const Vec3 t = u_nu + u_om.cross(r_);
+      const Vec3 w = W_inv_ * (alpha_ * (t - qh_ * qh_.dot(t)));
+      R.col(j).template head<3>() = u_nu - kn_inv_.cwiseProduct(w);
+      R.col(j).template tail<3>() = u_om - ko_inv_.cwiseProduct(r_.cross(w));
+    }
+  }
+
+ private:
+  /// Relative determinant of I + A G below which the dense path is used.
+  static constexpr double kSingular = 1e-10;
+  void assemble(const Vec3& r, double alpha, const Vec3& qh) {
+    if (!assembled_) {
+      M_.setZero();
+      M_.diagonal().head<3>() = kn_;
+      M_.diagonal().tail<3>() = ko_;
+      assembled_ = true;
+    }
+    const Mat3 A = alpha * (Mat3::Identity() - qh * qh.transpose());
+    const Mat3 rh = hat(r);
+    const Mat3 A_rh = A * rh;
+    M_.topLeftCorner<3, 3>() += A;
+    M_.topRightCorner<3, 3>() -= A_rh;
+    M_.bottomLeftCorner<3, 3>() -= A_rh.transpose();  // hat(r) A = -(A hat(r))^T
+    M_.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;  // -hat(r) A hat(r)
+  }
+  Vec3 kn_, ko_, kn_inv_, ko_inv_;
+  int n_ = 0;
+  Vec3 r_, qh_;
+  double alpha_ = 0.0;
+  Mat3 W_inv_;
+  bool woodbury_ = false;
+  bool assembled_ = false;
+  Mat6 M_;
+  std::optional<StrainSystem> dense_;
+};
+
 }  // namespace
 
 const char* to_string(Summary::Status s) {
@@ -159,16 +257,31 @@ struct ShootingSolver::Impl {
   std::optional<ode::Integrator> coarse_integrator, coarse_sens_integrator;
   ode::Integrator* active_plain = nullptr;
   ode::Integrator* active_sens = nullptr;
+  // Options::kinematics == kLieGroup: RKMK4 integrators replacing the four above.
+  std::optional<LieGroupRk4> lie_plain, lie_sens, lie_coarse_plain, lie_coarse_sens;
+  // Cold starts: a middle level with 2 x coarse_steps (when 4 x coarse_steps <= steps); the
+  // fine start is the Richardson extrapolation of the coarse and middle solutions.
+  std::optional<ode::Integrator> mid_integrator, mid_sens_integrator;
+  std::optional<LieGroupRk4> lie_mid_plain, lie_mid_sens;
+  LieGroupRk4* active_lie_plain = nullptr;
+  LieGroupRk4* active_lie_sens = nullptr;
   Eigen::VectorXd Y;                // augmented state
   std::vector<double> dF_ddelta;    // per actuator, at the last tip residual (TCA drives)
 
   int n_act = 0;
   int n_tca = 0;
   int nx = 0;
+  // Tip constraint (RodModel::tip_constraint): n_con = 3 (pinned) or 1 (normal only)
+  // reaction unknowns at x[k_con...] and as many position residuals at r[k_con...].
+  int n_con = 0;
+  int k_con = 0;
+  Vec3 con_target_W = Vec3::Zero();
+  Vec3 con_normal_W = Vec3::Zero();
   int dim = 0;
   double L = 0.0;
   double Fc = 1.0;
   Vec3 K_nu, K_omega, nu_star, omega_star;
+  Vec3 K_nu_inv, K_omega_inv;  // reciprocals for StringSystem
   std::vector<int> unknown_of;   // actuator -> unknown index (-1 for tension drives)
   std::vector<double> length_ratio;
   std::vector<double> count;
@@ -183,6 +296,15 @@ struct ShootingSolver::Impl {
   Eigen::VectorXd y;
   Eigen::VectorXd y_acc, x_acc;  // y(L) at the last accepted point x_acc (load fraction 1 only)
   bool acc_full_load = false;
+  // IVP memo across solves: y(L) = y_acc is reused when the next IVP has the same initial
+  // unknowns, IVP parameters (cT, f_ext) and level, e.g. the first residual of a warm start
+  // whose actuation changed only temperatures or tip loads (they enter the tip residual only).
+  bool memo_valid = false;
+  std::vector<double> acc_cT;
+  std::vector<double> acc_dF;  // dF/d delta at the accepted point (under its actuation)
+  Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
+  Vec3 acc_f_ext = Vec3::Zero();
+  const ode::Integrator* acc_level = nullptr;
   std::vector<std::vector<tca::Segment>> scaled_segments;
   int ivp_count = 0;
 
@@ -193,6 +315,8 @@ struct ShootingSolver::Impl {
     L = model.length_m;
     K_nu = model.shear_extension_stiffness();
     K_omega = model.bending_torsion_stiffness();
+    K_nu_inv = K_nu.cwiseInverse();
+    K_omega_inv = K_omega.cwiseInverse();
     nu_star = Vec3::UnitZ();
     omega_star = model.reference_curvature_B_1_m;
     const double EI = std::min(K_omega.x(), K_omega.y());
@@ -205,7 +329,13 @@ struct ShootingSolver::Impl {
       count.push_back(static_cast<double>(a.count));
       straight.push_back(a.routing.type == rod::Routing::Type::kStraight);
     }
-    nx = 6 + n_tca;
+    k_con = 6 + n_tca;
+    if (model.tip_constraint) {
+      con_target_W = model.tip_constraint->position_W_m;
+      n_con = model.tip_constraint->normal_W ? 1 : 3;
+      if (model.tip_constraint->normal_W) con_normal_W = *model.tip_constraint->normal_W;
+    }
+    nx = 6 + n_tca + n_con;
     cT.assign(n_act, 0.0);
     y.resize(dim);
     scaled_segments.resize(n_act);
@@ -221,14 +351,30 @@ struct ShootingSolver::Impl {
                             options.coarse_steps > 0 &&
                             2 * options.coarse_steps <= options.integrator.steps;
     if (use_coarse) coarse_integrator.emplace(dim, coarse);
+    ode::IntegratorOptions mid = coarse;
+    mid.steps = 2 * options.coarse_steps;
+    const bool use_mid = use_coarse && 2 * mid.steps <= options.integrator.steps;
+    if (use_mid) mid_integrator.emplace(dim, mid);
     if (options.jacobian == JacobianMethod::kSensitivity) {
       sens_integrator.emplace(dim * (1 + nx), options.integrator);
       if (use_coarse) coarse_sens_integrator.emplace(dim * (1 + nx), coarse);
+      if (use_mid) mid_sens_integrator.emplace(dim * (1 + nx), mid);
       rhs_ws.resize(6, nx);
       Y.resize(dim * (1 + nx));
       rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
         eval_rhs_sens(s, yy, dy);
       };
+    }
+    if (options.kinematics == Kinematics::kLieGroup) {
+      lie_plain.emplace(dim, 0, options.integrator.steps);
+      if (use_coarse) lie_coarse_plain.emplace(dim, 0, options.coarse_steps);
+      if (use_mid) lie_mid_plain.emplace(dim, 0, mid.steps);
+      if (options.jacobian == JacobianMethod::kSensitivity) {
+        lie_sens.emplace(dim, nx, options.integrator.steps);
+        if (use_coarse) lie_coarse_sens.emplace(dim, nx, options.coarse_steps);
+        if (use_mid) lie_mid_sens.emplace(dim, nx, mid.steps);
+      }
+
     }
     use_level(false);
   }
@@ -258,6 +404,9 @@ struct ShootingSolver::Impl {
               "options.centerline_intervals", o.centerline_intervals,
               "must divide options.integrator.steps = " + std::to_string(o.integrator.steps));
     }
+    require(o.kinematics == Kinematics::kFlat || o.integrator.method == ode::Method::kRk4,
+            "options.integrator.method", "cvode",
+            "must be rk4 with options.kinematics = lie_group (a fixed-step method)");
     o.integrator.output_intervals = 0;
     return o;
   }
@@ -271,9 +420,8 @@ struct ShootingSolver::Impl {
     const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
     const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
 
-    Mat6 M = Mat6::Zero();
-    M.diagonal().head<3>() = K_nu;
-    M.diagonal().tail<3>() = K_omega;
+    // M = K + sum_i U_i A_i U_i^T (StringSystem), A_i = c_i T_i P_i / |q_i|.
+    StringSystem M(K_nu, K_omega, K_nu_inv, K_omega_inv);
     // b_nu = -omega x n_B - R^T f_ext - sum g_i;  b_omega = -omega x m_B - nu x n_B - sum r_i x g_i
     Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
     Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
@@ -295,24 +443,21 @@ struct ShootingSolver::Impl {
       dy[kDelta + i] = q_norm - length_ratio[i];  // delta_i' = |q_i| - L_i
       if (cT[i] == 0.0) continue;
       const Vec3 qh = q / q_norm;
-      const Mat3 P = Mat3::Identity() - qh * qh.transpose();
-      // A_i = c_i T_i P_i / |q_i|
-      const Mat3 A = (cT[i] / q_norm) * P;
-      const Mat3 rh = hat(r);
-      const Mat3 A_rh = A * rh;
-      M.topLeftCorner<3, 3>() += A;
-      M.topRightCorner<3, 3>() -= A_rh;
-      M.bottomLeftCorner<3, 3>() -= A_rh.transpose();  // hat(r) A = -(A hat(r))^T
-      M.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;  // -hat(r) A hat(r)
-      // g_i = c_i T_i [omega x qh + P (omega x r' + r'') / |q|]
-      const Vec3 g = cT[i] * (omega.cross(qh) + P * (omega.cross(dr) + ddr) / q_norm);
+      M.add(r, cT[i] / q_norm, qh);
+      // g_i = c_i T_i [omega x qh + P (omega x r' + r'') / |q|],  P v = v - qh (qh . v)
+      Vec3 g = omega.cross(qh);
+      if (!straight[i]) {
+        const Vec3 v = omega.cross(dr) + ddr;
+        g += (v - qh * qh.dot(v)) / q_norm;
+      }
+      g *= cT[i];
       b_nu -= g;
       b_omega -= r.cross(g);
     }
-    Vec6 b;
-    b << b_nu, b_omega;
-    Vec6 z = b;
-    StrainSystem(M).solve_in_place(z);
+    Vec6 z;
+    z << b_nu, b_omega;
+    M.factor();
+    M.solve_in_place(z);
     // [Pawlowski2019] Eqs. (7)-(8): p' = R nu, R' = R hat(omega).
     dy.segment<3>(kP) = R * nu;
     Eigen::Map<Mat3>(dy.data() + kR) = R * hat(omega);
@@ -339,9 +484,7 @@ struct ShootingSolver::Impl {
     const Vec3 omega(yy + kOmega);
     const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
     const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
-    Mat6 M = Mat6::Zero();
-    M.diagonal().head<3>() = K_nu;
-    M.diagonal().tail<3>() = K_omega;
+    StringSystem lu(K_nu, K_omega, K_nu_inv, K_omega_inv);
     Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
     Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
     for (int i = 0; i < n_act; ++i) {
@@ -365,21 +508,14 @@ struct ShootingSolver::Impl {
       c.Pv = c.v - c.qh * c.qh.dot(c.v);
       c.gb = omega.cross(c.qh) + c.Pv / c.q_norm;  // g_i = c_i T_i gb_i
       if (cT[i] == 0.0) continue;
-      const Mat3 A = (cT[i] / c.q_norm) * (Mat3::Identity() - c.qh * c.qh.transpose());
-      const Mat3 rh = hat(c.r);
-      const Mat3 A_rh = A * rh;
-      M.topLeftCorner<3, 3>() += A;
-      M.topRightCorner<3, 3>() -= A_rh;
-      M.bottomLeftCorner<3, 3>() -= A_rh.transpose();
-      M.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;
+      lu.add(c.r, cT[i] / c.q_norm, c.qh);
       const Vec3 g = cT[i] * c.gb;
       b_nu -= g;
       b_omega -= c.r.cross(g);
     }
-    Vec6 b;
-    b << b_nu, b_omega;
-    const StrainSystem lu(M);
-    Vec6 z = b;
+    Vec6 z;
+    z << b_nu, b_omega;
+    lu.factor();
     lu.solve_in_place(z);
     dY.segment<3>(kP) = R * nu;
     Eigen::Map<Mat3>(dY.data() + kR) = R * hat(omega);
@@ -480,8 +616,17 @@ struct ShootingSolver::Impl {
                 bool* below_closed = nullptr) {
     if (!all_finite(x)) return false;
     set_parameters(act, lambda, x);
+    if (memo_valid && acc_level == active_plain && x_acc.size() == x.size() && x_acc == x &&
+        acc_cT == cT && acc_f_ext == f_ext_W) {
+      y = y_acc;  // same IVP as the last accepted one: no integration
+      return tip_residual(act, lambda, x, y, r, below_closed);
+    }
     initial_state(x, y);
     ++ivp_count;
+    if (active_lie_plain) {
+      if (!active_lie_plain->integrate(rhs, 0.0, L, y) || !all_finite(y)) return false;
+      return tip_residual(act, lambda, x, y, r, below_closed);
+    }
     const ode::IntegrationSummary is = active_plain->integrate(rhs, 0.0, L, y);
     if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(y)) return false;
     return tip_residual(act, lambda, x, y, r, below_closed);
@@ -497,15 +642,19 @@ struct ShootingSolver::Impl {
     Y.head(dim) = y;
     for (int j = 0; j < 6; ++j) Y[dim * (j + 1) + kNu + j] = 1.0;  // d y(0) / d (nu0, omega0)
     ++ivp_count;
-    const ode::IntegrationSummary is = active_sens->integrate(rhs_sens, 0.0, L, Y);
-    if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(Y)) return false;
+    if (active_lie_sens) {
+      if (!active_lie_sens->integrate(rhs_sens, 0.0, L, Y) || !all_finite(Y)) return false;
+    } else {
+      const ode::IntegrationSummary is = active_sens->integrate(rhs_sens, 0.0, L, Y);
+      if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(Y)) return false;
+    }
     y = Y.head(dim);
     if (!tip_residual(act, lambda, x, y, r, below_closed)) return false;
     // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
     J.resize(nx, nx);
     const Eigen::Map<const Mat3> R(y.data() + kR);
     const Vec3 nu = y.segment<3>(kNu), omega = y.segment<3>(kOmega);
-    const Vec3 F_e = lambda * act.tip_force_W_N, M_e = lambda * act.tip_moment_W_Nm;
+    const Vec3 F_e = lambda * act.tip_force_W_N + reaction_W(x), M_e = lambda * act.tip_moment_W_Nm;
     for (int j = 0; j < nx; ++j) {
       const double* yj = Y.data() + dim * (j + 1);
       const Eigen::Map<const Mat3> dR(yj + kR);
@@ -526,6 +675,8 @@ struct ShootingSolver::Impl {
         drn += dF;
         drm += ri.cross(dF);
       }
+      // A reaction unknown enters only the tip force (its IVP sensitivity is zero).
+      if (j >= k_con) drn -= R.transpose() * (n_con == 3 ? Vec3::Unit(j - k_con) : con_normal_W);
       J.block<3, 1>(0, j) = drn / Fc;
       J.block<3, 1>(3, j) = drm / (Fc * L);
       for (int i = 0; i < n_act; ++i) {
@@ -533,6 +684,8 @@ struct ShootingSolver::Impl {
         if (k < 0) continue;
         J(k, j) = ((k == j ? 1.0 : 0.0) - dF_ddelta[i] * yj[kDelta + i]) / Fc;
       }
+      if (n_con == 3) J.block<3, 1>(k_con, j) = Vec3(yj + kP) / L;
+      if (n_con == 1) J(k_con, j) = con_normal_W.dot(Vec3(yj + kP)) / L;
     }
     return J.allFinite();
   }
@@ -544,7 +697,9 @@ struct ShootingSolver::Impl {
     const Eigen::Map<const Mat3> R(yL.data() + kR);
     const Vec3 nu = yL.segment<3>(kNu);
     const Vec3 omega = yL.segment<3>(kOmega);
-    Vec3 rn = K_nu.cwiseProduct(nu - nu_star) - R.transpose() * (lambda * act.tip_force_W_N);
+    // The holder's reaction (an unknown, not scaled by lambda) adds to the applied tip force.
+    Vec3 rn = K_nu.cwiseProduct(nu - nu_star) -
+              R.transpose() * (lambda * act.tip_force_W_N + reaction_W(x));
     Vec3 rm = K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
     for (int i = 0; i < n_act; ++i) {
       if (cT[i] == 0.0) continue;
@@ -556,6 +711,9 @@ struct ShootingSolver::Impl {
     }
     r.head<3>() = rn / Fc;
     r.segment<3>(3) = rm / (Fc * L);
+    // Tip constraint: position error (pinned) or its normal component, scaled by L.
+    if (n_con == 3) r.segment<3>(k_con) = (yL.segment<3>(kP) - con_target_W) / L;
+    if (n_con == 1) r[k_con] = con_normal_W.dot(yL.segment<3>(kP) - con_target_W) / L;
     if (below_closed) *below_closed = false;
     for (int i = 0; i < n_act; ++i) {
       const int k = unknown_of[i];
@@ -574,11 +732,20 @@ struct ShootingSolver::Impl {
     return all_finite(r);
   }
 
+  /// Tip force the holder applies to the rod (world frame) for unknowns x; 0 without a
+  /// tip constraint.
+  Vec3 reaction_W(const Eigen::VectorXd& x) const {
+    if (n_con == 3) return x.segment<3>(k_con);
+    if (n_con == 1) return x[k_con] * con_normal_W;
+    return Vec3::Zero();
+  }
+
   Eigen::VectorXd typical_scale() const {
     Eigen::VectorXd t(nx);
     t.head<3>().setOnes();
     t.segment<3>(3).setConstant(1.0 / L);
-    t.tail(n_tca).setConstant(Fc);
+    t.segment(6, n_tca).setConstant(Fc);
+    t.tail(n_con).setConstant(Fc);
     return t;
   }
 
@@ -696,9 +863,9 @@ struct ShootingSolver::Impl {
         ok = false;
       }
       if (ok && T.allFinite()) {
-        x.tail(n_tca) = T;
+        x.segment(6, n_tca) = T;
       } else {
-        x.tail(n_tca).setZero();
+        x.segment(6, n_tca).setZero();
       }
       for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * x[6 + k];
     }
@@ -735,15 +902,16 @@ struct ShootingSolver::Impl {
         return Summary::Status::kMaxIterations;
       }
       if (J.size() == 0) {
+        bool approximate = false;
         const bool ok = options.jacobian == JacobianMethod::kSensitivity
-                            ? residual_and_jacobian(act, lambda, x, r, J)
+                            ? newton_jacobian(act, lambda, x, r, J, approximate)
                             : fd_jacobian(act, lambda, x, r, J);
         if (!ok) {
           why = "Jacobian evaluation failed (non-finite IVP)";
           J.resize(0, 0);
           return Summary::Status::kLineSearchFailed;
         }
-        fresh = true;
+        fresh = !approximate;  // a coarse-level Jacobian is treated like a stale one
       }
       dx = J.partialPivLu().solve(-r);
       if (!dx.allFinite()) {
@@ -790,14 +958,93 @@ struct ShootingSolver::Impl {
     }
   }
 
+  /// Sensitivity Jacobian for Newton at x (r: the residual at x, kept). On the fine level
+  /// with a coarse level (Options::coarse_steps), the first request at a point uses the coarse
+  /// level's sensitivities (coarse_steps / steps of the cost; within the coarse discretization
+  /// error of the fine Jacobian) and sets `approximate`; a second request at the same point
+  /// (the approximate one failed) computes the fine Jacobian.
+  bool newton_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                       Eigen::VectorXd& r, Eigen::MatrixXd& J, bool& approximate) {
+    approximate = false;
+    const bool fine = active_plain == &integrator;
+    if (!fine || !coarse_sens_integrator || (coarse_jacobian_x.size() == x.size() && coarse_jacobian_x == x)) {
+      return residual_and_jacobian(act, lambda, x, r, J);
+    }
+    coarse_jacobian_x = x;
+    Eigen::VectorXd rc;
+    use_level(true);
+    const bool ok = residual_and_jacobian(act, lambda, x, rc, J);
+    use_level(false);
+    if (!ok) return residual_and_jacobian(act, lambda, x, r, J);
+    approximate = true;
+    return true;
+  }
+
+  /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
+  /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
+  /// removes the leading O(h^4) term of the discretization error of x:
+  ///   x(N) = x* + C N^-4  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-4 - N_m^-4) / (N_m^-4 - N_c^-4).
+  /// On failure x, J keep the coarse solution.
+  void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc, const Eigen::MatrixXd& Jc,
+                          Eigen::VectorXd& x, Eigen::MatrixXd& J, Summary& summary) {
+    Eigen::VectorXd xm = xc;
+    Eigen::MatrixXd Jm = Jc;
+    std::string why;
+    use_mid_level();
+    const Summary::Status sm = newton(act, 1.0, xm, Jm, summary, why, kCoarseTolerance);
+    use_level(false);
+    if (sm != Summary::Status::kConverged) return;
+    const double a = std::pow(static_cast<double>(options.coarse_steps), -4.0);
+    const double b = std::pow(2.0 * options.coarse_steps, -4.0);
+    const double c = std::pow(static_cast<double>(options.integrator.steps), -4.0);
+    x = xm + ((c - b) / (b - a)) * (xm - xc);
+    J = Jm;
+  }
+
+  /// Selects the middle level (2 x coarse_steps); use_level(false) returns to the fine one.
+  void use_mid_level() {
+    active_plain = &*mid_integrator;
+    active_sens = mid_sens_integrator ? &*mid_sens_integrator : nullptr;
+    active_lie_plain = lie_mid_plain ? &*lie_mid_plain : nullptr;
+    active_lie_sens = lie_mid_sens ? &*lie_mid_sens : nullptr;
+  }
+
   /// Selects the coarse or the fine (Options::integrator) IVP level.
   void use_level(bool coarse) {
     active_plain = coarse ? &*coarse_integrator : &integrator;
+    active_lie_plain = lie_plain ? (coarse ? &*lie_coarse_plain : &*lie_plain) : nullptr;
+    active_lie_sens = lie_sens ? (coarse ? &*lie_coarse_sens : &*lie_sens) : nullptr;
     active_sens = sens_integrator ? (coarse ? &*coarse_sens_integrator : &*sens_integrator) : nullptr;
+  }
+
+  /// Warm start: the actuation change (temperatures) alters the TCA rows of the Jacobian
+  /// only through dF/d delta (the IVP does not depend on temperatures). Row k is
+  /// (e_k - dF/d delta ddelta/dx) / F_c, so its ddelta/dx part is rescaled by dF_new / dF_old
+  /// with dF_old of the previous solution and dF_new at the same point under `act` (the
+  /// residual there comes from the IVP memo, without integration).
+  void refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
+    if (n_tca == 0 || !memo_valid || x_acc.size() != x.size() || x_acc != x) return;
+    const std::vector<double> dF_old = acc_dF;
+    Eigen::VectorXd r;
+    if (!residual(act, 1.0, x, r)) return;
+    remember(1.0, x);  // Newton's first residual at x is then answered by the memo too
+    for (int i = 0; i < n_act; ++i) {
+      const int k = unknown_of[i];
+      if (k < 0 || dF_old[i] == 0.0 || !std::isfinite(dF_ddelta[i])) continue;
+      const double ratio = dF_ddelta[i] / dF_old[i];
+      J(k, k) -= 1.0 / Fc;
+      J.row(k) *= ratio;
+      J(k, k) += 1.0 / Fc;
+    }
   }
 
   void remember(double lambda, const Eigen::VectorXd& x) {
     acc_full_load = lambda == 1.0 && active_plain == &integrator;
+    memo_valid = y.allFinite();
+    acc_cT = cT;
+    acc_f_ext = f_ext_W;
+    acc_dF = dF_ddelta;
+    acc_level = active_plain;
     y_acc = y;
     x_acc = x;
   }
@@ -828,8 +1075,9 @@ struct ShootingSolver::Impl {
     const Vec3 w = f_ext_W;
     const Vec3 pL = y.segment<3>(kP);
     const Vec3 c = y.segment<3>(kC);
-    Vec3 n_exp = act.tip_force_W_N + L * w;
-    Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(act.tip_force_W_N) + (c - L * p0).cross(w);
+    const Vec3 F_tip = act.tip_force_W_N + reaction_W(x);  // applied load plus the holder's
+    Vec3 n_exp = F_tip + L * w;
+    Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - L * p0).cross(w);
     for (int i = 0; i < n_act; ++i) {
       const rod::Routing& ro = model.actuators[i].routing;
       const Vec3 r0 = ro.r(0.0);
@@ -869,12 +1117,6 @@ struct ShootingSolver::Impl {
       return summary;
     };
 
-    if (model.tip_constraint) {
-      sol.jacobian.resize(0, 0);
-      return done(Summary::Status::kUnsupported, "tip_constraint is not supported by this solver yet",
-                  straight_guess(act, 1.0));
-    }
-
     const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
     Eigen::VectorXd x = warm ? sol.unknowns : straight_guess(act, 1.0);
     Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
@@ -888,7 +1130,10 @@ struct ShootingSolver::Impl {
     if (coarse_integrator) {
       const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
                                sol.coarse_unknowns.allFinite();
-      if (!warm || warm_coarse) {
+      // A warm start with a Jacobian goes straight to the fine level: its first residual is
+      // usually free (IVP memo), and the Broyden-updated Jacobian saves the coarse solve.
+      const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
+      if ((!warm || warm_coarse) && !warm_fine) {
         Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
         Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
                                                                        : Eigen::MatrixXd();
@@ -903,6 +1148,7 @@ struct ShootingSolver::Impl {
           } else {
             x = xc;
             J = Jc;
+            if (mid_integrator) cold_extrapolation(act, xc, Jc, x, J, summary);
           }
           coarse_x = xc;
           coarse_J = Jc;
@@ -911,6 +1157,7 @@ struct ShootingSolver::Impl {
     }
     sol.coarse_unknowns = coarse_x;
     sol.coarse_jacobian = coarse_J;
+    if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
     Summary::Status st = newton(act, 1.0, x, J, summary, why, options.tolerance);
     if (st == Summary::Status::kConverged || !options.continuation) {
       sol.jacobian = J;
@@ -995,8 +1242,21 @@ struct ShootingSolver::Impl {
       res.centerline_p_W_m.push_back(yy.segment<3>(kP));
       res.centerline_R_WB.push_back(Eigen::Map<const Mat3>(yy.data() + kR));
     };
-    const ode::IntegrationSummary is = output_integrator->integrate(rhs, 0.0, L, y, observer);
-    if (is.status != ode::IntegrationSummary::Status::kSuccess || !y.allFinite()) {
+    bool sampled = false;
+    if (lie_plain) {
+      // Every step node, or every (steps / centerline_intervals)-th (validated to divide).
+      const int every = options.centerline_intervals > 0
+                            ? options.integrator.steps / options.centerline_intervals : 1;
+      int node = 0;
+      auto every_observer = [&](double s, const Eigen::VectorXd& yy) {
+        if (node++ % every == 0) observer(s, yy);
+      };
+      sampled = lie_plain->integrate(rhs, 0.0, L, y, every_observer) && y.allFinite();
+    } else {
+      const ode::IntegrationSummary is = output_integrator->integrate(rhs, 0.0, L, y, observer);
+      sampled = is.status == ode::IntegrationSummary::Status::kSuccess && y.allFinite();
+    }
+    if (!sampled) {
       res.converged = false;
       res.message = "IVP failed while sampling the solution";
       res.centerline_s_m.clear();
@@ -1006,6 +1266,7 @@ struct ShootingSolver::Impl {
     }
     res.tip_position_W_m = y.segment<3>(kP);
     res.tip_R_WB = Eigen::Map<const Mat3>(y.data() + kR);
+    if (n_con > 0) res.tip_reaction_force_W_N = reaction_W(sol.unknowns);
     for (int i = 0; i < n_act; ++i) {
       res.actuators[i].tension_N = cT[i] / count[i];
       res.actuators[i].elongation_m = y[kDelta + i];
@@ -1050,6 +1311,26 @@ bool ShootingSolver::jacobian(const Actuation& actuation, const Eigen::VectorXd&
   return impl_->fd_jacobian(actuation, 1.0, x, r0, J);
 }
 
+bool ShootingSolver::residual_and_tip_state(const Actuation& actuation, const Eigen::VectorXd& x,
+                                            Eigen::VectorXd& r, Eigen::VectorXd& tip_state) {
+  if (!impl_->residual(actuation, 1.0, x, r)) return false;
+  tip_state = impl_->y;
+  return true;
+}
+
+bool ShootingSolver::tip_sensitivities(const Actuation& actuation, const Eigen::VectorXd& x,
+                                       Eigen::VectorXd& r, Eigen::MatrixXd& J,
+                                       Eigen::VectorXd& tip_state, Eigen::MatrixXd& dtip_dx) {
+  if (impl_->options.jacobian != JacobianMethod::kSensitivity) return false;
+  if (!impl_->residual_and_jacobian(actuation, 1.0, x, r, J)) return false;
+  const int dim = impl_->dim, nx = impl_->nx;
+  tip_state = impl_->y;
+  dtip_dx.resize(dim, nx);
+  for (int j = 0; j < nx; ++j) dtip_dx.col(j) = impl_->Y.segment(dim * (j + 1), dim);
+  return true;
+}
+
+int ShootingSolver::state_dimension() const { return impl_->dim; }
 int ShootingSolver::unknown_count() const { return impl_->nx; }
 double ShootingSolver::characteristic_force_N() const { return impl_->Fc; }
 const Options& ShootingSolver::options() const { return impl_->options; }

@@ -7,7 +7,13 @@
 ///         nu_B [12,15), omega_B [15,18), c_W = int_0^s p_W ds [18,21) (for the global
 ///         equilibrium check), delta_i [21, 21 + n_actuators) (one per actuator) ).
 /// Unknowns x = ( nu_B(0) 3, omega_B(0) 3, T_i for each TCA-driven actuator in model
-/// order ); tension-driven actuators have known tensions.
+/// order, tip-constraint reaction ); tension-driven actuators have known tensions.
+/// Tip constraint (RodModel::tip_constraint): pinned adds the reaction force lambda_W (3,
+/// world frame, the force the holder applies to the rod) and the residual
+/// (p(L) - p_target) / L (3); normal-only adds lambda (1; reaction lambda n) and
+/// n . (p(L) - p_target) / L (1). The reaction is added to F_e in the tip conditions, is
+/// not scaled by the continuation's load fraction, and is reported as
+/// rod::Result::tip_reaction_force_W_N.
 /// Residual r(x) (docs/conventions.md "Tip conditions"), scaled:
 ///   r[0:3] = ( K_nu (nu(L) - nu*) - R^T F_e + sum c_i T_i qh_i ) / F_c
 ///   r[3:6] = ( K_omega (omega(L) - omega*) - R^T M_e + sum c_i T_i r_i x qh_i ) / (F_c L)
@@ -27,6 +33,16 @@
 #include "tca/tca.hpp"
 
 namespace tcasim::cosserat {
+
+/// Offsets of the IVP state blocks (layout documented above).
+namespace state_layout {
+inline constexpr int kP = 0;       ///< p_W, 3
+inline constexpr int kR = 3;       ///< R_WB column-major, 9
+inline constexpr int kNu = 12;     ///< nu_B, 3
+inline constexpr int kOmega = 15;  ///< omega_B, 3
+inline constexpr int kC = 18;      ///< int_0^s p_W ds, 3
+inline constexpr int kDelta = 21;  ///< delta_i, one per actuator
+}  // namespace state_layout
 
 /// Actuation of one actuator: which field is read depends on the model's drive type.
 struct ActuatorDrive {
@@ -62,11 +78,24 @@ enum class JacobianMethod {
   kCentralDifference,
 };
 
+/// How the shooting IVP advances the pose (p_W, R_WB); the other state components (strains,
+/// c, delta) and the sensitivities always use the same stages as the pose.
+enum class Kinematics {
+  /// The flattened state (p, R column-major, ...) by Options::integrator (RK4 or CVODE).
+  kFlat,
+  /// Fourth-order Runge-Kutta-Munthe-Kaas steps on SE(3) (cosserat/lie_rkmk4.hpp) with
+  /// `integrator.steps` equal steps (needs integrator.method = kRk4): exact for constant
+  /// strains at any step count, order 4 otherwise, R orthogonal to round-off.
+  kLieGroup,
+};
+
 /// Solver options (validated by ShootingSolver's constructor: InputError naming the field).
 struct Options {
   /// IVP integrator: kRk4 with `steps` (even, so a node lies at L/2) or kCvode with
   /// `relative_tolerance`. output_intervals is ignored (set by the solver).
   ode::IntegratorOptions integrator;
+  /// Pose integration: kFlat (default) or the Lie-group RKMK4 method.
+  Kinematics kinematics = Kinematics::kFlat;
   /// Converged when the scaled residual satisfies ||r||_inf <= tolerance.
   double tolerance = 1e-10;
   int max_iterations = 50;          ///< Newton iterations per solve (per continuation step)
@@ -79,12 +108,19 @@ struct Options {
   bool continuation = true;
   /// Smallest continuation step in the load fraction before giving up.
   double min_continuation_step = 1.0 / 1024.0;
-  /// Two-level solve with kRk4: a coarse problem with this many RK4 steps is converged
-  /// first (to a scaled residual of 1e-9); a cold start then refines its solution with
-  /// `integrator.steps`, a warm start adds the coarse solution's change to the previous
-  /// fine solution. 0 disables (also when steps < 2 x this). Only the starting point
-  /// changes: convergence is always tested on the fine problem.
+  /// Multi-level solve with kRk4: a coarse problem with this many RK4 steps is converged
+  /// first (to a scaled residual of 1e-9); a cold start then converges a middle level with
+  /// twice as many steps (if 4 x this <= steps) and starts `integrator.steps` at the
+  /// Richardson extrapolation of the two (O(h^4) term removed); a warm start without a
+  /// Jacobian (or with warm_start_fine_only = false) adds the coarse solution's change to
+  /// the previous fine solution. Newton on the fine level takes its (sensitivity) Jacobians
+  /// from this coarse level, and from the fine level only if that one fails at a point.
+  /// 0 disables (also when steps < 2 x this). Only the starting point and the Jacobians
+  /// change: convergence is always tested on the fine problem.
   int coarse_steps = 4;
+  /// Warm starts with a Jacobian skip the coarse level and iterate on the fine problem from
+  /// the previous solution with the previous (Broyden-updated) Jacobian.
+  bool warm_start_fine_only = true;
   /// Centerline samples in results: 0 = every RK4 step node (64 intervals with CVODE);
   /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4).
   int centerline_intervals = 0;
@@ -128,7 +164,7 @@ const char* to_string(Summary::Status s);
 /// A solution (or a starting guess): unknowns and what warm starts reuse.
 struct Solution {
   bool valid = false;          ///< false: solve starts from the straight guess
-  Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca...)
+  Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca..., tip reaction)
   Eigen::MatrixXd jacobian;    ///< d r_scaled / d x at (or near) `unknowns`; may be empty
   Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP
   /// Solution and Jacobian of the coarse level (Options::coarse_steps), for warm starts.
@@ -169,7 +205,18 @@ class ShootingSolver {
   /// Jacobian of the scaled residual at x by Options::jacobian (for tests); false on failure.
   bool jacobian(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
 
-  /// Number of unknowns (6 + TCA-driven actuators).
+  /// Scaled residual at x and the IVP end state y(L) (layout above); false on failure.
+  bool residual_and_tip_state(const Actuation& actuation, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& r, Eigen::VectorXd& tip_state);
+  /// One augmented IVP at x: scaled residual r, its exact Jacobian J = dr/dx, y(L) and the
+  /// forward sensitivities dy(L)/dx (state_dimension() x unknown_count()). Returns false
+  /// when Options::jacobian is not kSensitivity (or it fell back to differences) or the IVP
+  /// failed.
+  bool tip_sensitivities(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                         Eigen::MatrixXd& J, Eigen::VectorXd& tip_state, Eigen::MatrixXd& dtip_dx);
+  /// IVP state dimension (21 + actuators).
+  int state_dimension() const;
+  /// Number of unknowns (6 + TCA-driven actuators + tip-constraint reactions).
   int unknown_count() const;
   /// Characteristic force F_c [N] of the residual scaling.
   double characteristic_force_N() const;

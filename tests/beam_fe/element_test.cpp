@@ -146,6 +146,39 @@ TEST(BeamFeAssembly, BorderedTangentWithTcaTipMomentAndGravityMatchesFiniteDiffe
   EXPECT_LT(scaled_difference(MatrixXd(K), K_fd), kTangentTolerance);
 }
 
+TEST(BeamFeAssembly, BorderedTangentWithPinnedOrNormalTipConstraintMatchesFiniteDifferences) {
+  for (const bool normal_only : {false, true}) {
+    SCOPED_TRACE(normal_only ? "normal-only" : "pinned");
+    rod::RodModel model = testing::circular_manipulator(units::degC_to_K(90.0));
+    model.tip_moment_W_Nm = {2e-5, -1e-5, 3e-6};
+    rod::TipConstraint c;
+    c.position_W_m = {-0.004, 0.001, 0.037};
+    if (normal_only) c.normal_W = Vector3d(0.8, -0.36, 0.48);
+    model.tip_constraint = c;
+    Options opt;
+    opt.elements = 3;
+    opt.order = 2;
+    const Discretization disc(model, opt);
+    ASSERT_EQ(disc.constraint_count(), normal_only ? 1 : 3);
+    State st = perturbed_state(disc, 13u, 0.002);
+    st.tensions_N = {-0.02};
+    st.tip_reaction_W_N = normal_only ? Vector3d(0.012 * *c.normal_W) : Vector3d(0.01, -0.02, 0.005);
+    const double lambda = 0.6;
+    Eigen::SparseMatrix<double> K;
+    const VectorXd r = disc.residual(st, lambda, &K);
+    // The constraint rows are not trivially zero here (the tip is off its target).
+    EXPECT_GT(r.tail(disc.constraint_count()).cwiseAbs().maxCoeff(), 1e-6);
+    const MatrixXd K_fd = test_support::jacobian(
+        [&](const VectorXd& dx) {
+          State t = st;
+          disc.retract(t, dx);
+          return disc.residual(t, lambda);
+        },
+        VectorXd::Zero(disc.dof_count()), kMillimetreScaleStep);
+    EXPECT_LT(scaled_difference(MatrixXd(K), K_fd), kTangentTolerance);
+  }
+}
+
 TEST(BeamFeDual, RotationFormulasMatchSo3AndTheirDerivativesMatchFiniteDifferences) {
   using D3 = ad::Dual<double, 3>;
   for (const double angle : {0.0, 1e-6, 0.05, 0.0999, 0.1001, 1.0, 3.0}) {

@@ -347,15 +347,6 @@ TEST(BeamFeSolver, NonConvergenceIsReportedWithAReasonAndNoNaN) {
   EXPECT_FALSE(j.at("converged").get<bool>());
 }
 
-TEST(BeamFeSolver, TipConstraintIsReportedAsNotSupported) {
-  rod::RodModel m = straight_strings_rod();
-  m.tip_constraint = rod::TipConstraint{};
-  State st;
-  const Summary s = solve(m, options(4, 2), st);
-  EXPECT_EQ(s.status, Summary::Status::kNotSupported);
-  EXPECT_EQ(s.message, "tip_constraint is not supported by this solver yet");
-}
-
 }  // namespace
 }  // namespace tcasim::beam_fe
 
@@ -405,6 +396,33 @@ TEST(BeamFeSolver, ResultCarriesMethodDiscretizationTipAndBendingRadius) {
   ASSERT_TRUE(res.bending_radius_m.has_value());
   EXPECT_GT(*res.bending_radius_m, 0.0);
   EXPECT_TRUE(res.message.empty());
+}
+
+TEST(BeamFeSolver, ConstantStrainGuessHasTheExactTcaTensionAndNodalRotations) {
+  // No gravity, straight TCA and tension strings, precurved: the predictor's tensions solve
+  // the closed-form TCA equation and its nodal rotations R0 exp(s omega) are the converged
+  // FE ones (exact on any mesh); positions differ only by the interpolation of the arc.
+  rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 0.0);
+  m.reference_curvature_B_1_m = {0.2, -0.5, 0.0};
+  testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0, units::degC_to_K(90.0));
+  testing::add_tension_string(m, "pull", -0.002, 0.002, 0.01);
+  const Options opt = options(5, 2);
+  const Discretization disc(m, opt);
+  State guess = disc.reference_state();
+  ASSERT_TRUE(disc.constant_strain_guess(1.0, guess));
+  const Solved s = run(m, opt);
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+    EXPECT_NEAR(guess.tensions_N[i], s.state.tensions_N[i], kExact * std::abs(s.state.tensions_N[i]));
+  }
+  for (std::size_t k = 0; k < s.state.s_m.size(); ++k) {
+    EXPECT_LT((guess.q_WB[k].toRotationMatrix() - s.state.q_WB[k].toRotationMatrix()).cwiseAbs().maxCoeff(), kExact);
+  }
+  // Helical routing has no constant-strain solution: no guess.
+  testing::add_tension_string(m, "helix", 0.002, 0.0, 0.01, 1, 12.0);
+  const Discretization helical(m, opt);
+  State untouched = helical.reference_state();
+  EXPECT_FALSE(helical.constant_strain_guess(1.0, untouched));
 }
 
 TEST(BeamFeSolver, WarmStartFromAnotherTemperatureConvergesToTheColdStartSolution) {

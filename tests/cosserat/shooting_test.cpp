@@ -548,18 +548,6 @@ TEST(ShootingRejections, AbsurdCompressiveTensionFailsWithAReasonAndNoNaN) {
   EXPECT_FALSE(s.converged()) << "a tension of 5e5 EA should not give a converged rod";
 }
 
-TEST(ShootingRejections, TipConstraintIsReportedAsUnsupported) {
-  rod::RodModel m = soft_rod_with_strings();
-  m.tip_constraint = rod::TipConstraint{};
-  ShootingSolver solver(m, rk4_options(40));
-  const Actuation act = Actuation::from_model(m);
-  Solution sol;
-  const Summary s = solver.solve(act, sol);
-  EXPECT_EQ(s.status, Summary::Status::kUnsupported);
-  EXPECT_EQ(s.message, "tip_constraint is not supported by this solver yet");
-  EXPECT_TRUE(result_is_finite(solver.make_result(act, sol, s)));
-}
-
 // --------------------------------------------------------------------------------------
 // The paper's manipulators: warm-started temperature sweeps 25..150 degC.
 

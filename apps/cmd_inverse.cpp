@@ -1,0 +1,191 @@
+// `tcasim inverse` and `tcasim grasp`: inverse kinetostatics ([Pawlowski2019] Section IV)
+// and the grasp temperature of a blocked finger (Section V-D, Eqs. (43)-(44)).
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/cli_util.hpp"
+#include "apps/commands.hpp"
+#include "common/error.hpp"
+#include "common/units.hpp"
+#include "cosserat/inverse.hpp"
+#include "cosserat/shooting.hpp"
+#include "rod/scenario.hpp"
+
+namespace tcasim::app {
+
+namespace {
+
+/// Exit code of a solve that ran but did not converge (the output file is still written).
+constexpr int kExitNotConverged = 4;
+
+/// --max-temperature-degC -> K (NaN when absent: the material's maximum).
+double max_temperature_K(double t_degC, bool given) {
+  if (!given) return std::numeric_limits<double>::quiet_NaN();
+  require(std::isfinite(t_degC) && t_degC > -units::kZeroCelsius_K, "--max-temperature-degC", t_degC,
+          "must be above absolute zero");
+  return units::degC_to_K(t_degC);
+}
+
+/// Runs f, re-issuing the library's bound error under the command-line flag's name.
+template <class F>
+auto with_flag_names(F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (e.key() == "max_temperature_degC") throw InputError("--max-temperature-degC", e.value(), e.rule());
+    throw;
+  }
+}
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+void write_json(const nlohmann::json& j, const std::string& path) {
+  Output out(path);
+  out.stream() << j.dump(2) << "\n";
+  out.stream().flush();
+}
+
+}  // namespace
+
+void add_inverse_command(CLI::App& app) {
+  struct Flags {
+    std::string scenario, target, actuators, out;
+    double max_t_degC = 0.0;
+  };
+  auto flags = std::make_shared<Flags>();
+  auto* cmd = app.add_subcommand(
+      "inverse", "Inverse kinetostatics: actuation (temperatures or tensions) that puts the tip at a target");
+  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1), free tip")->required();
+  cmd->add_option("--target-m", flags->target, "target tip position X,Y,Z [m], world frame")->required();
+  cmd->add_option("--actuators", flags->actuators, "comma-separated actuator names to adjust (default: all)");
+  auto* tmax = cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                               "upper temperature bound [degC] (default: the material's valid maximum)");
+  cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
+  cmd->callback([flags, tmax] {
+    const rod::RodModel model = rod::read_scenario(flags->scenario);
+    if (model.tip_constraint) {
+      throw InputError("scenario tip_constraint", "(present)",
+                       "must be absent for `tcasim inverse` (it moves a free tip; use `tcasim grasp` "
+                       "for a blocked tip)");
+    }
+    cosserat::InverseOptions o;
+    const Eigen::Vector3d target = cosserat::parse_vector3(flags->target, "--target-m");
+    o.actuators = cosserat::actuator_indices(model, flags->actuators, "--actuators");
+    if (o.actuators.empty()) {
+      throw InputError("--actuators", flags->actuators, "the scenario has no actuator to adjust");
+    }
+    o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
+    cosserat::ShootingSolver solver(model, cosserat::Options{});
+    cosserat::Actuation act = cosserat::Actuation::from_model(model);
+    // Start from rest: TCAs at ambient (their material's reference temperature).
+    for (int i : o.actuators) {
+      const rod::Actuator& a = model.actuators[i];
+      if (a.drive.type == rod::Drive::Type::kTca) {
+        act.set_temperature_K(i, a.drive.tca->material().reference_temperature_K);
+      }
+    }
+    cosserat::Solution sol;
+    const cosserat::InverseResult r =
+        with_flag_names([&] { return cosserat::solve_inverse(solver, model, target, o, act, sol); });
+
+    nlohmann::json j;
+    j["schema"] = "tcasim.inverse/1";
+    j["scenario"] = model.name;
+    j["converged"] = r.converged();
+    j["status"] = cosserat::to_string(r.status);
+    j["message"] = r.message;
+    j["iterations"] = r.iterations;
+    j["forward_solves"] = r.forward_solves;
+    j["target_m"] = vec(target);
+    j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
+    j["distance_m"] = r.distance_m;
+    nlohmann::json acts = nlohmann::json::array();
+    for (std::size_t k = 0; k < r.actuators.size(); ++k) {
+      const rod::Actuator& a = model.actuators[r.actuators[k]];
+      nlohmann::json e{{"name", a.name}, {"at_bound", k < r.at_bound.size() && r.at_bound[k]}};
+      const double v = k < static_cast<std::size_t>(r.values.size())
+                           ? r.values[static_cast<Eigen::Index>(k)]
+                           : std::numeric_limits<double>::quiet_NaN();
+      if (a.drive.type == rod::Drive::Type::kTca) {
+        e["temperature_degC"] = units::K_to_degC(v);
+      } else {
+        e["tension_N"] = v;
+      }
+      acts.push_back(e);
+    }
+    j["actuators"] = acts;
+    write_json(j, flags->out);
+    if (!r.converged()) {
+      fmt::print(stderr, "tcasim inverse: not converged ({}): {}\n", cosserat::to_string(r.status), r.message);
+      throw CLI::RuntimeError(kExitNotConverged);
+    }
+  });
+}
+
+void add_grasp_command(CLI::App& app) {
+  struct Flags {
+    std::string scenario, out;
+    double mass_g = 0.0, friction = 0.0, max_t_degC = 0.0;
+    int fingers = 0;
+  };
+  auto flags = std::make_shared<Flags>();
+  auto* cmd = app.add_subcommand(
+      "grasp", "Grasp temperature: TCA temperature at which a blocked finger's normal force reaches m g/(mu n)");
+  cmd->add_option("scenario", flags->scenario,
+                  "scenario of one finger with a tip_constraint and its contact normal")->required();
+  cmd->add_option("--mass-g", flags->mass_g, "grasped mass [g]")->required();
+  cmd->add_option("--friction", flags->friction, "friction coefficient mu finger/object")->required();
+  cmd->add_option("--fingers", flags->fingers, "number of fingers n")->required();
+  auto* tmax = cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                               "upper temperature bound [degC] (default: the material's valid maximum)");
+  cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
+  cmd->callback([flags, tmax] {
+    require(std::isfinite(flags->mass_g) && flags->mass_g > 0.0, "--mass-g", flags->mass_g, "must be > 0");
+    require(std::isfinite(flags->friction) && flags->friction > 0.0, "--friction", flags->friction,
+            "must be > 0");
+    require(flags->fingers >= 1, "--fingers", flags->fingers, "must be an integer >= 1");
+    const rod::RodModel model = rod::read_scenario(flags->scenario);
+    if (!model.tip_constraint || !model.tip_constraint->normal_W) {
+      throw InputError(flags->scenario + ": tip_constraint.normal", "(missing)",
+                       "`tcasim grasp` needs a tip_constraint with a \"normal\" (the contact "
+                       "direction from the finger toward the object)");
+    }
+    cosserat::GraspOptions o;
+    o.mass_kg = units::g_to_kg(flags->mass_g);
+    o.friction = flags->friction;
+    o.fingers = flags->fingers;
+    o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
+    cosserat::Options so;
+    so.tolerance = 1e-12;  // the blocked force is checked to 1e-9 relative
+    const cosserat::GraspResult r = with_flag_names([&] { return cosserat::solve_grasp(model, so, o); });
+
+    nlohmann::json j;
+    j["schema"] = "tcasim.grasp/1";
+    j["scenario"] = model.name;
+    j["converged"] = r.converged;
+    j["message"] = r.message;
+    j["mass_g"] = flags->mass_g;
+    j["friction"] = flags->friction;
+    j["fingers"] = flags->fingers;
+    j["temperature_degC"] = units::K_to_degC(r.temperature_K);
+    j["normal_force_N"] = r.required_force_N;
+    j["blocked_normal_force_N"] = r.blocked_normal_force_N;
+    j["root_temperature_degC"] =
+        r.root_temperature_K ? nlohmann::json(units::K_to_degC(*r.root_temperature_K)) : nlohmann::json();
+    j["iterations"] = r.iterations;
+    j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
+    write_json(j, flags->out);
+    if (!r.converged) {
+      fmt::print(stderr, "tcasim grasp: not converged: {}\n", r.message);
+      throw CLI::RuntimeError(kExitNotConverged);
+    }
+  });
+}
+
+}  // namespace tcasim::app

@@ -1,0 +1,171 @@
+#include "rod/vtk.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include "common/error.hpp"
+
+namespace tcasim::rod {
+namespace {
+
+/// A VTK String array in ASCII: each string as its byte codes, terminated by 0.
+std::string string_array(const std::string& name, const std::vector<std::string>& values) {
+  std::string text;
+  for (const auto& v : values) {
+    for (unsigned char c : v) text += fmt::format("{} ", static_cast<int>(c));
+    text += "0 ";
+  }
+  if (!text.empty()) text.pop_back();
+  return fmt::format(
+      "      <DataArray type=\"String\" Name=\"{}\" NumberOfTuples=\"{}\" format=\"ascii\">\n"
+      "        {}\n"
+      "      </DataArray>\n",
+      name, values.size(), text);
+}
+
+/// CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+void write_text(const std::string& text, const std::string& path, const std::string& key) {
+  std::ofstream out(path);
+  if (!out) {
+    throw InputError(key, "\"" + path + "\"", fmt::format("cannot be opened for writing: {}", std::strerror(errno)));
+  }
+  out << text;
+  out.close();
+  if (!out) {
+    throw InputError(key, "\"" + path + "\"", fmt::format("could not be written: {}", std::strerror(errno)));
+  }
+}
+
+}  // namespace
+
+std::vector<ShapeCurve> shape_curves(const RodModel& model, const Result& result) {
+  const std::size_t n = result.centerline_s_m.size();
+  if (result.centerline_p_W_m.size() != n || result.centerline_R_WB.size() != n) {
+    throw std::invalid_argument(fmt::format(
+        "shape_curves: centerline arrays differ in length (s: {}, p: {}, R: {})", n,
+        result.centerline_p_W_m.size(), result.centerline_R_WB.size()));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(result.centerline_s_m[k]) || !result.centerline_p_W_m[k].allFinite() ||
+        !result.centerline_R_WB[k].allFinite()) {
+      throw DomainError(fmt::format("shape of '{}': centerline sample {} (of {}) is not finite",
+                                    result.scenario, k, n));
+    }
+  }
+  std::vector<ShapeCurve> curves;
+  curves.push_back({"centerline", -1, result.centerline_s_m, result.centerline_p_W_m});
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    const Actuator& a = model.actuators[i];
+    ShapeCurve c{a.name, static_cast<int>(i), result.centerline_s_m, {}};
+    c.p_W_m.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      // String path in the world frame: q_i = p + R r_i(s) (r_i in the body frame).
+      c.p_W_m.push_back(result.centerline_p_W_m[k] + result.centerline_R_WB[k] * a.routing.r(result.centerline_s_m[k]));
+    }
+    curves.push_back(std::move(c));
+  }
+  return curves;
+}
+
+std::string vtp_document(const RodModel& model, const Result& result) {
+  const std::vector<ShapeCurve> curves = shape_curves(model, result);
+  // Curves with fewer than 2 points are not lines; keep the point data consistent by
+  // writing only the curves that are.
+  std::size_t points = 0, lines = 0;
+  for (const auto& c : curves) {
+    if (c.p_W_m.size() >= 2) {
+      points += c.p_W_m.size();
+      ++lines;
+    }
+  }
+  std::string coords, s_values, ids, connectivity, offsets, cell_ids;
+  std::vector<std::string> names;
+  std::size_t next = 0;
+  for (const auto& c : curves) {
+    if (c.p_W_m.size() < 2) continue;
+    names.push_back(c.name);
+    for (std::size_t k = 0; k < c.p_W_m.size(); ++k) {
+      const Eigen::Vector3d& p = c.p_W_m[k];
+      // 17 significant digits: every number reads back to the same double.
+      coords += fmt::format("          {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
+      s_values += fmt::format("{:.17g} ", c.s_m[k]);
+      ids += fmt::format("{} ", c.actuator_id);
+      connectivity += fmt::format("{} ", next++);
+    }
+    offsets += fmt::format("{} ", next);
+    cell_ids += fmt::format("{} ", c.actuator_id);
+  }
+
+  std::string doc;
+  doc += "<?xml version=\"1.0\"?>\n";
+  doc += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  doc += "  <PolyData>\n";
+  doc += "    <FieldData>\n";
+  doc += string_array("scenario", {result.scenario});
+  doc += string_array("method", {result.method});
+  doc += string_array("curve_names", names);
+  doc += "    </FieldData>\n";
+  doc += fmt::format(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"0\">\n",
+      points, lines);
+  doc += "      <PointData Scalars=\"s_m\">\n";
+  doc += "        <DataArray type=\"Float64\" Name=\"s_m\" format=\"ascii\">\n          " + s_values + "\n";
+  doc += "        </DataArray>\n";
+  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " + ids + "\n";
+  doc += "        </DataArray>\n";
+  doc += "      </PointData>\n";
+  doc += "      <CellData Scalars=\"actuator_id\">\n";
+  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " + cell_ids + "\n";
+  doc += "        </DataArray>\n";
+  doc += "      </CellData>\n";
+  doc += "      <Points>\n";
+  doc += "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n" + coords;
+  doc += "        </DataArray>\n";
+  doc += "      </Points>\n";
+  doc += "      <Lines>\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " + connectivity + "\n";
+  doc += "        </DataArray>\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " + offsets + "\n";
+  doc += "        </DataArray>\n";
+  doc += "      </Lines>\n";
+  doc += "    </Piece>\n";
+  doc += "  </PolyData>\n";
+  doc += "</VTKFile>\n";
+  return doc;
+}
+
+void write_vtp(const RodModel& model, const Result& result, const std::string& path) {
+  write_text(vtp_document(model, result), path, "vtk file");
+}
+
+std::string shape_csv_document(const RodModel& model, const Result& result) {
+  std::string text = "curve,actuator_id,s_m,x_m,y_m,z_m\n";
+  for (const auto& c : shape_curves(model, result)) {
+    const std::string name = csv_field(c.name);
+    for (std::size_t k = 0; k < c.p_W_m.size(); ++k) {
+      const Eigen::Vector3d& p = c.p_W_m[k];
+      text += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", name, c.actuator_id, c.s_m[k], p.x(), p.y(),
+                          p.z());
+    }
+  }
+  return text;
+}
+
+void write_shape_csv(const RodModel& model, const Result& result, const std::string& path) {
+  write_text(shape_csv_document(model, result), path, "shape csv file");
+}
+
+}  // namespace tcasim::rod

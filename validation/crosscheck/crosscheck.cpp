@@ -1,0 +1,164 @@
+// validate_crosscheck: the two forward solvers (Cosserat shooting, geometrically exact beam
+// FE) on every scenario of the suite, the FE at increasing refinement.
+//
+// What it checks
+//   Both solvers discretize the same continuum problem (docs/conventions.md). For each
+//   `tcasim.scenario/1` file in validation/scenarios/ that both support (others are listed as
+//   skipped with the solvers' own reason), the FE with quadratic and linear elements on
+//   refined meshes is compared with the shooting reference: tip position, tip rotation and
+//   the largest actuator-tension difference, with wall times. Newton tolerances of the FE are
+//   tightened far below its defaults (crosscheck.cpp tight_tolerances()).
+// Reference
+//   Shooting with classical RK4 at 2048 steps; its error is estimated from a solve with 1024
+//   steps (|p(N) - p(N/2)| / 15) and reported with the CVODE (rtol 1e-12) difference.
+// Gates (per scenario)
+//   1. every solve converges;
+//   2. FE (quadratic, finest mesh) vs shooting: max(tip, mid-point) position difference
+//      <= 1e-9 L (the mid point matters where a tip constraint pins the tip);
+//   3. the reference's own estimated error <= 1e-10 L (it cannot hide an FE error of 1e-9 L);
+//   4. that difference shrinks by at least 10x from the coarsest to the finest quadratic mesh
+//      (the two solutions approach each other, not just happen to agree on one mesh; theory
+//      gives (128/16)^4 = 4096x until the reference's accuracy is reached).
+// Usage
+//   validate_crosscheck --out-dir out/crosscheck           (full)
+//   validate_crosscheck --quick --out-dir /tmp/crosscheck  (fewer meshes)
+//   /usr/bin/python3 scripts/plot_crosscheck.py out/crosscheck  (crosscheck.png)
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "rod/scenario.hpp"
+#include "validation/common/crosscheck.hpp"
+#include "validation/common/gates.hpp"
+
+namespace {
+
+namespace xc = tcasim::validation;
+
+/// The gate: FE vs shooting at the finest mesh, relative to the body length.
+constexpr double kAgreementOverL = 1e-9;
+/// The reference must be an order of magnitude below the agreement gate.
+constexpr double kReferenceOverL = 1e-10;
+/// Smallest reduction of the difference from the coarsest to the finest quadratic mesh.
+constexpr double kMinReduction = 10.0;
+
+/// The gated difference: tip or mid point, whichever is larger [m].
+double position_difference(const xc::CrossCheckRow& r) { return std::fmax(r.diff.tip_m, r.diff.mid_m); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Cross-check of the shooting and FE solvers on the scenario suite"};
+  bool quick = false;
+  std::string out_dir = "crosscheck-out";
+  std::string scenario_dir = TCASIM_SCENARIO_DIR;
+  std::vector<std::string> only;
+  xc::ReferenceSettings ref_settings;
+  app.add_flag("--quick", quick, "fewer meshes (seconds)");
+  app.add_option("--out-dir", out_dir, "output folder for CSV files");
+  app.add_option("--scenario-dir", scenario_dir, "folder with the suite's scenario files");
+  app.add_option("--scenario", only, "restrict to these scenario names (repeatable)");
+  app.add_option("--reference-steps", ref_settings.steps, "RK4 steps of the shooting reference (multiple of 4)");
+  app.add_option("--reference-tolerance", ref_settings.tolerance, "Newton tolerance of the shooting reference (scaled residual)");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const auto t_start = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
+    auto progress = [&](const std::string& what) {
+      fmt::print("  [{:7.2f} s] {}\n", elapsed(), what);
+      std::fflush(stdout);
+    };
+    std::filesystem::create_directories(out_dir);
+    const std::vector<xc::FeSettings> meshes = xc::crosscheck_meshes(quick);
+
+    fmt::print("Step 1: suite ({})\n", scenario_dir);
+    std::vector<tcasim::rod::RodModel> models;
+    std::vector<std::pair<std::string, std::string>> skipped;
+    for (const auto& path : xc::scenario_files(scenario_dir)) {
+      tcasim::rod::RodModel model = tcasim::rod::read_scenario(path);
+      if (!only.empty() && std::find(only.begin(), only.end(), model.name) == only.end()) continue;
+      if (auto why = xc::unsupported_reason(model)) {
+        skipped.emplace_back(model.name, *why);
+        fmt::print("  skipped {}: {}\n", model.name, *why);
+        continue;
+      }
+      fmt::print("  {} (L = {} m)\n", model.name, model.length_m);
+      models.push_back(std::move(model));
+    }
+
+    fmt::print("Step 2: reference (RK4 {} / {} steps, CVODE rtol {:.0e}) and FE meshes\n", ref_settings.steps,
+               ref_settings.steps / 2, ref_settings.cvode_rtol);
+    std::ofstream csv(out_dir + "/crosscheck.csv");
+    csv << xc::crosscheck_csv_header();
+    struct Entry {
+      const tcasim::rod::RodModel* model;
+      xc::Reference reference;
+      std::vector<xc::CrossCheckRow> rows;
+    };
+    std::vector<Entry> entries;
+    for (const auto& model : models) {
+      progress(model.name + ": shooting reference");
+      Entry e{&model, xc::shooting_reference(model, ref_settings), {}};
+      e.rows = xc::cross_check(model, e.reference, meshes, progress);
+      for (const auto& row : e.rows) csv << xc::crosscheck_csv_row(row, e.reference, ref_settings.steps);
+      csv.flush();
+      entries.push_back(std::move(e));
+    }
+
+    fmt::print("Step 3: table (FE - shooting; reference error = |p(N) - p(N/2)| / 15)\n");
+    for (const auto& e : entries) {
+      fmt::print("{}: L = {} m, reference error {:.2e} m, CVODE - RK4 {:.2e} m, shooting {:.3f} s\n", e.model->name,
+                 e.model->length_m, e.reference.self_error_m, e.reference.cvode_difference_m, e.reference.rk4.time_s);
+      fmt::print("  {:>5} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>8}\n", "order", "elements", "tip [m]",
+                 "tip / L", "mid [m]", "rot [rad]", "tension [N]", "react. [N]", "fe [s]");
+      for (const auto& r : e.rows) {
+        fmt::print("  {:>5} {:>8} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>8.3f}{}\n", r.order,
+                   r.elements, r.diff.tip_m, r.diff.tip_m / r.length_m, r.diff.mid_m, r.diff.rotation_rad,
+                   r.diff.max_tension_N, r.diff.reaction_N, r.fe_time_s, r.converged ? "" : "  NOT CONVERGED");
+      }
+    }
+
+    fmt::print("Step 4: gates\n");
+    xc::Gates gates("validate_crosscheck");
+    for (const auto& [name, why] : skipped) gates.check(name + ": skipped", true, why, "not gated (unsupported)");
+    for (const auto& e : entries) {
+      const std::string& name = e.model->name;
+      const double L = e.model->length_m;
+      int failed = 0;
+      for (const auto& r : e.rows) failed += r.converged ? 0 : 1;
+      gates.check(name + ": every solve converges", failed == 0 && e.reference.converged(),
+                  fmt::format("{} FE solves failed; reference {}", failed, e.reference.converged() ? "ok" : "failed"),
+                  "0");
+      std::vector<const xc::CrossCheckRow*> quadratic;
+      for (const auto& r : e.rows) {
+        if (r.order == 2) quadratic.push_back(&r);
+      }
+      const auto* finest = quadratic.back();
+      gates.at_most(fmt::format("{}: FE (order 2, {} elements) vs shooting, max(tip, mid) difference / L", name,
+                                finest->elements),
+                    position_difference(*finest) / L, kAgreementOverL);
+      gates.at_most(name + ": reference error estimate / L", e.reference.self_error_m / L, kReferenceOverL);
+      const double reduction = position_difference(*quadratic.front()) / position_difference(*finest);
+      gates.check(name + ": difference shrinks under refinement (order 2)", reduction >= kMinReduction,
+                  fmt::format("{:.2e} m ({} el.) -> {:.2e} m ({} el.): {:.0f}x", position_difference(*quadratic.front()),
+                              quadratic.front()->elements, position_difference(*finest), finest->elements, reduction),
+                  fmt::format(">= {:.0f}x", kMinReduction));
+    }
+    gates.write_csv(out_dir);
+    fmt::print("Wrote {}/crosscheck.csv and gates.csv ({:.1f} s)\n", out_dir, elapsed());
+    return gates.finish();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "validate_crosscheck: error: {}\n", e.what());
+    return 2;
+  }
+}
