@@ -12,15 +12,17 @@
 //   holder's reaction and the string terminations require. The solver reports the
 //   difference (cosserat::Summary::force_imbalance_W_N, moment_imbalance_W_Nm).
 // Gates (per solved scenario)
-//   1. the solve converges (at N RK4 steps and at the two order levels);
-//   2. imbalance e = max(|force imbalance| / F_load, |moment imbalance| / (F_load L)) at N
-//      steps <= kImbalanceAt32 (32 / N)^4 + kImbalanceFloor, where F_load = L |psi A g| +
-//      |F_tip| + |tip reaction| + |M_tip| / L + sum_i count_i |T_i| (the solver's
-//      characteristic force when all are 0). n(0) comes from the integrated strains, so e is
-//      the RK4 truncation error (O(h^4)) above a floor set by the Newton tolerance;
-//   3. where e is above that floor (e(16 steps) >= kOrderMinImbalance), its observed order
-//      between 8 and 16 steps lies in [4 - kOrderHalfWidth, 4 + kOrderHalfWidth] (RK4): a
-//      missing load term would give an e that does not converge.
+//   1. the solve converges (at N RK4 steps, at the equilibrium level and at the two order
+//      levels);
+//   2. imbalance e = max(|force imbalance| / F_load, |moment imbalance| / (F_load L)), where
+//      F_load = L |psi A g| + |F_tip| + |tip reaction| + |M_tip| / L + sum_i count_i |T_i|
+//      (the solver's characteristic force when all are 0). n(0) comes from the integrated
+//      strains, so e is the RK4 truncation error (O(h^4)) above a floor set by the Newton
+//      tolerance. At kEquilibriumSteps the truncation error is below that floor for every
+//      suite scenario, so the gate is e <= kImbalanceFloor: equilibrium to round-off;
+//   3. where e is above the floor (e(kOrderFineSteps) >= kOrderMinImbalance), its observed
+//      order between kOrderCoarseSteps and kOrderFineSteps lies in [4 - kOrderHalfWidth,
+//      4 + kOrderHalfWidth] (RK4): a missing load term would give an e that does not converge.
 // Usage
 //   validate_shapes --out-dir out/shapes              (full: N = 128 RK4 steps)
 //   validate_shapes --quick --out-dir /tmp/shapes     (N = 32; --steps N for any even N)
@@ -46,20 +48,24 @@
 
 namespace {
 
-/// Imbalance at 32 RK4 steps (truncation error): measured max 6.9e-8 over the suite
-/// (three-tca-3d); 2e-7 leaves a factor 3. Scaled by h^4 to other step counts.
-constexpr double kImbalanceAt32 = 2e-7;
+/// Step count of the equilibrium gate: the most curved suite scenario (circular manipulator
+/// at 150 degC) has e = 2.1e-9 at 128 steps, so about 1e-12 at 512 (h^4).
+constexpr int kEquilibriumSteps = 512;
 /// Floor of the imbalance set by the Newton tolerance (1e-10 on the scaled residual) and
 /// round-off: measured <= 7e-12 (fig8-body) at 256 and 512 steps.
 constexpr double kImbalanceFloor = 1e-10;
 /// Order check only where the truncation error dominates the floor by > 100x.
 constexpr double kOrderMinImbalance = 1e-9;
-/// RK4 is fourth order; measured 3.97..4.35 over the suite between 8 and 16 steps.
+/// RK4 is fourth order. This gate detects an imbalance that does not converge (a missing
+/// load term gives order ~0); RK4's order itself is gated to +-0.15 in tests/cosserat. The
+/// imbalance is the larger of a force and a moment error whose constants can partly cancel:
+/// measured 3.99..4.36 over the suite between 16 and 32 steps.
 constexpr double kExpectedOrder = 4.0;
 constexpr double kOrderHalfWidth = 0.5;
-/// The two step counts of the order check.
-constexpr int kOrderCoarseSteps = 8;
-constexpr int kOrderFineSteps = 16;
+/// The two step counts of the order check (8 -> 16 is pre-asymptotic for the most curved
+/// scenarios: orders 4.5-4.9 measured there).
+constexpr int kOrderCoarseSteps = 16;
+constexpr int kOrderFineSteps = 32;
 
 /// One solve of a scenario at one step count.
 struct Level {
@@ -74,6 +80,7 @@ struct Row {
   std::string file, name, status, reason;
   Level main;            ///< at N steps: shapes, table and gates 1-2
   Level coarse, fine;    ///< at kOrderCoarseSteps and kOrderFineSteps: gate 3
+  Level equilibrium;     ///< at kEquilibriumSteps: gate 2
   double wall_time_s = 0.0;
 };
 
@@ -167,6 +174,7 @@ int main(int argc, char** argv) {
           tcasim::rod::write_vtp(model, row.main.result, out_dir + "/" + row.name + ".vtp");
           tcasim::rod::write_shape_csv(model, row.main.result, out_dir + "/" + row.name + "_shape.csv");
         }
+        row.equilibrium = solve_level(model, kEquilibriumSteps);
         row.coarse = solve_level(model, kOrderCoarseSteps);
         row.fine = solve_level(model, kOrderFineSteps);
       } catch (const std::exception& e) {
@@ -211,15 +219,14 @@ int main(int argc, char** argv) {
 
     fmt::print("Step 4: gates\n");
     tcasim::validation::Gates gates("validate_shapes");
-    const double bound = kImbalanceAt32 * std::pow(32.0 / steps, 4) + kImbalanceFloor;
     for (const auto& row : rows) {
       if (row.status == "error") {
         gates.check(row.name + ": converges", false, "error: " + row.reason, "converged");
         continue;
       }
       if (row.main.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) continue;
-      const bool converged =
-          row.main.summary.converged() && row.coarse.summary.converged() && row.fine.summary.converged();
+      const bool converged = row.main.summary.converged() && row.equilibrium.summary.converged() &&
+                             row.coarse.summary.converged() && row.fine.summary.converged();
       gates.check(row.name + ": converges", converged,
                   fmt::format("{} after {} iterations, residual {:.2e} ({} / {} at {} / {} steps)", row.status,
                               row.main.summary.iterations, row.main.summary.residual,
@@ -227,8 +234,8 @@ int main(int argc, char** argv) {
                               kOrderCoarseSteps, kOrderFineSteps),
                   "converged at every level");
       gates.at_most(fmt::format("{}: global equilibrium max(|dn(0)| / F_load, |dm(0)| / (F_load L)) at {} steps",
-                                row.name, steps),
-                    row.main.imbalance(), bound);
+                                row.name, kEquilibriumSteps),
+                    row.equilibrium.imbalance(), kImbalanceFloor);
       const double e_coarse = row.coarse.imbalance(), e_fine = row.fine.imbalance();
       if (e_fine >= kOrderMinImbalance) {
         const double order = std::log(e_coarse / e_fine) / std::log(2.0);
