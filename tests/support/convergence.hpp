@@ -2,18 +2,15 @@
 /// Observed convergence orders and a two-sided order gate for tests.
 #include <gtest/gtest.h>
 
+#include "common/convergence.hpp"
+
 #include <string>
 #include <vector>
 
 namespace tcasim::test_support {
 
-/// Observed orders between successive levels:
-///   p_i = log(e_i / e_{i+1}) / log(h_i / h_{i+1}),  i = 0..n-2,
-/// for any ratios of h (not only halving). A pair with a non-positive or non-finite
-/// error gives NaN (which fails any bracket). Throws std::invalid_argument if the
-/// sizes differ, fewer than 2 levels are given, or h is not positive and distinct
-/// between successive levels.
-std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors);
+/// The one definition of observed orders (common/convergence.hpp).
+using tcasim::observed_orders;
 
 /// Table with columns level, h, error, observed order (the order of level i is the
 /// one between levels i-1 and i).

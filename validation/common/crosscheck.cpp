@@ -199,23 +199,6 @@ Reference shooting_reference(const rod::RodModel& model, const ReferenceSettings
   return ref;
 }
 
-std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors) {
-  if (h.size() != errors.size()) {
-    throw std::invalid_argument(fmt::format("observed_orders: {} step sizes but {} errors", h.size(), errors.size()));
-  }
-  if (h.size() < 2) throw std::invalid_argument("observed_orders: needs at least 2 levels");
-  std::vector<double> p;
-  for (std::size_t i = 0; i + 1 < h.size(); ++i) {
-    if (!(h[i] > 0.0) || !(h[i + 1] > 0.0) || h[i] == h[i + 1] || !std::isfinite(h[i]) || !std::isfinite(h[i + 1])) {
-      throw std::invalid_argument(fmt::format("observed_orders: h[{}] = {}, h[{}] = {} must be positive and distinct",
-                                              i, h[i], i + 1, h[i + 1]));
-    }
-    const bool usable = errors[i] > 0.0 && errors[i + 1] > 0.0 && std::isfinite(errors[i]) && std::isfinite(errors[i + 1]);
-    p.push_back(usable ? std::log(errors[i] / errors[i + 1]) / std::log(h[i] / h[i + 1]) : kNaN);
-  }
-  return p;
-}
-
 Richardson richardson(const std::vector<double>& h, const std::vector<Eigen::Vector3d>& u) {
   if (h.size() != 3 || u.size() != 3) throw std::invalid_argument("richardson: needs exactly 3 levels");
   if (!(h[0] > h[1] && h[1] > h[2] && h[2] > 0.0)) {

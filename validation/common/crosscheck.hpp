@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "common/convergence.hpp"
+
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
@@ -94,11 +96,7 @@ struct Reference {
 /// Solves the reference (throws nothing for non-convergence: see converged()).
 Reference shooting_reference(const rod::RodModel& model, const ReferenceSettings& settings);
 
-/// Observed orders between successive levels, p_i = log(e_i / e_{i+1}) / log(h_i / h_{i+1})
-/// (i = 0..n-2); NaN for a pair with a non-positive or non-finite error. Throws
-/// std::invalid_argument for mismatched sizes, fewer than 2 levels or non-distinct h.
-/// (Same definition as tests/support/convergence.hpp, which depends on GoogleTest.)
-std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors);
+using tcasim::observed_orders;  // common/convergence.hpp
 
 /// Richardson extrapolation from three levels h0 > h1 > h2 with a common ratio
 /// r = h0/h1 = h1/h2 (within 1e-9 relative; std::invalid_argument otherwise) of the vector
