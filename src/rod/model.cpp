@@ -84,4 +84,18 @@ Eigen::Vector3d RodModel::weight_per_length_W_N_m() const {
   return material.density_kg_m3 * section.area_m2 * gravity_W_m_s2;
 }
 
+RodModel with_tca_material(const RodModel& model, const tca::Material& material,
+                           std::optional<tca::F12Form> f12_form) {
+  RodModel m = model;
+  for (auto& [id, t] : m.tcas) {
+    tca::Parameters p = t->parameters();
+    if (f12_form) p.f12_form = *f12_form;
+    t = std::make_shared<const tca::Tca>(p, material);
+  }
+  for (auto& a : m.actuators) {
+    if (a.drive.type == Drive::Type::kTca) a.drive.tca = m.tcas.at(a.drive.tca_id);
+  }
+  return m;
+}
+
 }  // namespace tcasim::rod

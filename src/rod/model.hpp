@@ -114,4 +114,9 @@ struct RodModel {
   Eigen::Vector3d weight_per_length_W_N_m() const;
 };
 
+/// A copy of `model` with every TCA rebuilt on `material` (measurable parameters kept; the
+/// Eq. (4) factor replaced when `f12_form` is given), the actuators pointing at the new TCAs.
+RodModel with_tca_material(const RodModel& model, const tca::Material& material,
+                           std::optional<tca::F12Form> f12_form = std::nullopt);
+
 }  // namespace tcasim::rod

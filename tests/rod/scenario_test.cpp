@@ -659,3 +659,33 @@ TEST(ShippedFiles, ValidationScenariosAndMaterialsParse) {
 
 }  // namespace
 }  // namespace tcasim::rod
+
+namespace tcasim::rod {
+namespace {
+
+TEST(WithTcaMaterial, RebuildsEveryTcaOnTheMaterialAndRepointsTheActuators) {
+  const std::filesystem::path file =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "square-manipulator.json";
+  const RodModel base = read_scenario(file.string());
+  const tca::Material other = load_material("silver-nylon-castigliano", "material");
+  const RodModel m = with_tca_material(base, other, tca::F12Form::kPaper);
+  ASSERT_EQ(m.tcas.size(), base.tcas.size());
+  for (const auto& [id, t] : m.tcas) {
+    EXPECT_EQ(t->material().name, "silver-nylon-castigliano");
+    EXPECT_EQ(t->parameters().f12_form, tca::F12Form::kPaper);
+    EXPECT_EQ(t->parameters().coiled_length_m, base.tcas.at(id)->parameters().coiled_length_m);
+    EXPECT_EQ(t->parameters().twist_turns, base.tcas.at(id)->parameters().twist_turns);
+  }
+  for (const auto& a : m.actuators) {
+    if (a.drive.type == Drive::Type::kTca) {
+      EXPECT_EQ(a.drive.tca, m.tcas.at(a.drive.tca_id));
+    }
+  }
+  // The original model is untouched, and without an f12 override the form is kept.
+  EXPECT_EQ(base.tcas.begin()->second->material().name, "silver-nylon-sun2022");
+  const RodModel kept = with_tca_material(base, other);
+  EXPECT_EQ(kept.tcas.begin()->second->parameters().f12_form, base.tcas.begin()->second->parameters().f12_form);
+}
+
+}  // namespace
+}  // namespace tcasim::rod

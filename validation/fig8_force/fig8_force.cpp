@@ -67,13 +67,7 @@ struct Point {
 };
 
 tcasim::rod::RodModel with_material(const tcasim::rod::RodModel& model, const std::string& material) {
-  tcasim::rod::RodModel m = model;
-  const tcasim::tca::Material mat = tcasim::rod::load_material(material, "material");
-  for (auto& [id, tca] : m.tcas) tca = std::make_shared<const tcasim::tca::Tca>(tca->parameters(), mat);
-  for (auto& a : m.actuators) {
-    if (a.drive.type == tcasim::rod::Drive::Type::kTca) a.drive.tca = m.tcas.at(a.drive.tca_id);
-  }
-  return m;
+  return tcasim::rod::with_tca_material(model, tcasim::rod::load_material(material, "material"));
 }
 
 tcasim::cosserat::Options options() {

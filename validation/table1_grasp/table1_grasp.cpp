@@ -74,7 +74,6 @@ struct Row {
 /// expansion scaled by s (1 = as published).
 tcasim::rod::RodModel variant(const tcasim::rod::RodModel& base, const std::string& material,
                               tcasim::tca::F12Form form, double s) {
-  tcasim::rod::RodModel m = base;
   tcasim::tca::Material mat = tcasim::rod::load_material(material, "material");
   auto& law = mat.diameter;
   if (law.type == tcasim::tca::DiameterLaw::Type::kRatioPolynomial) {
@@ -85,15 +84,7 @@ tcasim::rod::RodModel variant(const tcasim::rod::RodModel& base, const std::stri
   } else {
     law.linear_expansion_1_K *= s;
   }
-  for (auto& [id, tca] : m.tcas) {
-    tcasim::tca::Parameters p = tca->parameters();
-    p.f12_form = form;
-    tca = std::make_shared<const tcasim::tca::Tca>(p, mat);
-  }
-  for (auto& a : m.actuators) {
-    if (a.drive.type == tcasim::rod::Drive::Type::kTca) a.drive.tca = m.tcas.at(a.drive.tca_id);
-  }
-  return m;
+  return tcasim::rod::with_tca_material(base, mat, form);
 }
 
 tcasim::cosserat::Options shooting_options() {
