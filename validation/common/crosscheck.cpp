@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/scenario.hpp"
 
 namespace tcasim::validation {
 
@@ -119,6 +120,23 @@ std::optional<std::string> unsupported_reason(const rod::RodModel& model) {
   }
   if (why.empty()) return std::nullopt;
   return why;
+}
+
+std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
+                                      std::vector<std::pair<std::string, std::string>>& skipped) {
+  std::vector<rod::RodModel> models;
+  for (const auto& path : scenario_files(dir)) {
+    rod::RodModel model = rod::read_scenario(path);
+    if (!only.empty() && std::find(only.begin(), only.end(), model.name) == only.end()) continue;
+    if (auto why = unsupported_reason(model)) {
+      skipped.emplace_back(model.name, *why);
+      fmt::print("  skipped {}: {}\n", model.name, *why);
+      continue;
+    }
+    fmt::print("  {} (L = {} m)\n", model.name, model.length_m);
+    models.push_back(std::move(model));
+  }
+  return models;
 }
 
 Eigen::Vector3d centerline_point(const rod::Result& result, double s_m) {

@@ -29,6 +29,12 @@ std::vector<std::string> scenario_files(const std::string& dir);
 /// solve with each; FE kNotSupported or shooting kUnsupported); none when both support it.
 std::optional<std::string> unsupported_reason(const rod::RodModel& model);
 
+/// The suite: the scenario files of `dir` (restricted to the names in `only` when it is not
+/// empty) that both solvers support; the others are listed in `skipped` (name, reason).
+/// Prints one line per scenario.
+std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
+                                      std::vector<std::pair<std::string, std::string>>& skipped);
+
 /// Centerline position at arc length s_m: the result's sample there (within 1e-9 of the
 /// spacing scale L); throws std::invalid_argument when no sample lies at s_m.
 Eigen::Vector3d centerline_point(const rod::Result& result, double s_m);

@@ -82,19 +82,8 @@ int main(int argc, char** argv) {
     const std::vector<xc::FeSettings> meshes = xc::crosscheck_meshes(quick);
 
     fmt::print("Step 1: suite ({})\n", scenario_dir);
-    std::vector<tcasim::rod::RodModel> models;
     std::vector<std::pair<std::string, std::string>> skipped;
-    for (const auto& path : xc::scenario_files(scenario_dir)) {
-      tcasim::rod::RodModel model = tcasim::rod::read_scenario(path);
-      if (!only.empty() && std::find(only.begin(), only.end(), model.name) == only.end()) continue;
-      if (auto why = xc::unsupported_reason(model)) {
-        skipped.emplace_back(model.name, *why);
-        fmt::print("  skipped {}: {}\n", model.name, *why);
-        continue;
-      }
-      fmt::print("  {} (L = {} m)\n", model.name, model.length_m);
-      models.push_back(std::move(model));
-    }
+    const std::vector<tcasim::rod::RodModel> models = xc::load_suite(scenario_dir, only, skipped);
 
     fmt::print("Step 2: reference (RK4 {} / {} steps, CVODE rtol {:.0e}) and FE meshes\n", ref_settings.steps,
                ref_settings.steps / 2, ref_settings.cvode_rtol);
