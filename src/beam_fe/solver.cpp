@@ -351,6 +351,7 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
     res.actuators.push_back(
         {model.actuators[i].name, state.tensions_N[i], lengths[i] - model.actuators[i].rest_length_m});
   }
+  rod::flag_closed_coils(model, res);
   if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;
   res.centerline_s_m = state.s_m;
   res.centerline_p_W_m = state.p_W_m;

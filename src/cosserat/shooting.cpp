@@ -1271,6 +1271,7 @@ struct ShootingSolver::Impl {
       res.actuators[i].tension_N = cT[i] / count[i];
       res.actuators[i].elongation_m = y[kDelta + i];
     }
+    rod::flag_closed_coils(model, res);
     try {
       res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
                                                            res.centerline_p_W_m, res.centerline_R_WB);

@@ -121,9 +121,11 @@ nlohmann::json to_json(const Result& result) {
   for (std::size_t i = 0; i < result.actuators.size(); ++i) {
     const ActuatorResult& a = result.actuators[i];
     const std::string field = fmt::format("actuators[{}]", i);
-    actuators.push_back({{"name", a.name},
-                         {"tension_N", w.number(a.tension_N, field + ".tension_N")},
-                         {"elongation_m", w.number(a.elongation_m, field + ".elongation_m")}});
+    json entry = {{"name", a.name},
+                  {"tension_N", w.number(a.tension_N, field + ".tension_N")},
+                  {"elongation_m", w.number(a.elongation_m, field + ".elongation_m")}};
+    if (a.below_closed_length) entry["below_closed_length"] = true;
+    actuators.push_back(std::move(entry));
   }
   j["actuators"] = actuators;
   j["bending_radius_m"] =
@@ -160,6 +162,23 @@ nlohmann::json to_json(const Result& result) {
                                    : message;
   }
   return j;
+}
+
+void flag_closed_coils(const RodModel& model, Result& result) {
+  for (std::size_t i = 0; i < model.actuators.size() && i < result.actuators.size(); ++i) {
+    const Drive& d = model.actuators[i].drive;
+    if (d.type != Drive::Type::kTca || !d.tca || d.tca->parameters().kind != tca::Kind::kExtension) continue;
+    bool below = false;
+    for (const tca::Segment& seg : d.segments) {
+      try {
+        below = below || seg.fraction * d.tca->free_coil_elongation(result.actuators[i].tension_N,
+                                                                     seg.temperature_K).elongation_m < 0.0;
+      } catch (const DomainError&) {
+        below = true;  // no free-coil state carries this tension: certainly not an open coil
+      }
+    }
+    result.actuators[i].below_closed_length = below;
+  }
 }
 
 void write_result(const Result& result, const std::string& path) {

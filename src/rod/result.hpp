@@ -16,6 +16,9 @@ struct ActuatorResult {
   std::string name;
   double tension_N = 0.0;     ///< tension of one string (positive = tensile)
   double elongation_m = 0.0;  ///< current length minus rest length of one string
+  /// An extension TCA (or one of its segments) is below its closed length: the solvers use
+  /// the free-coil law there, while the real coils would be in contact (see flag_closed_coils).
+  bool below_closed_length = false;
 };
 
 /// One solve's outcome, as written to a result file.
@@ -45,6 +48,11 @@ struct Result {
 /// Serializes a result. Non-finite numbers are never written: a result holding one is
 /// turned into converged = false with a message naming the field.
 nlohmann::json to_json(const Result& result);
+
+/// Sets ActuatorResult::below_closed_length for every extension-TCA actuator whose tension
+/// gives a negative free-coil elongation in any segment (delta_k = f_k delta(T, T_k) < 0).
+/// Both solvers call it when they fill a result.
+void flag_closed_coils(const RodModel& model, Result& result);
 
 /// Writes to_json(result) to `path`, or to stdout when path is empty or "-".
 void write_result(const Result& result, const std::string& path);

@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "rod/result.hpp"
+#include "rod/scenario.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -246,6 +247,32 @@ TEST(ThreePointRadius, StraightRodAndCustomSectionHaveNoRadius) {
   RodModel custom = circle_body(0.008, L);
   custom.section.shape = Section::Shape::kCustom;
   EXPECT_FALSE(three_point_inner_radius(custom, bent.s, bent.p, bent.R).has_value());
+}
+
+}  // namespace
+}  // namespace tcasim::rod
+
+namespace tcasim::rod {
+namespace {
+
+TEST(FlagClosedCoils, MarksAnExtensionTcaPushedBelowItsClosedLengthAndWritesTheFlag) {
+  const std::filesystem::path file =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "square-manipulator.json";
+  RodModel model = read_scenario(file.string());
+  const Actuator& act = model.actuators.at(0);
+  const double t_K = act.drive.segments.at(0).temperature_K;
+  // The free-coil elongation at this tension tells which side of the closed length it is.
+  const double closing_tension_N = act.drive.tca->blocked_force(t_K);  // delta = 0 exactly
+  Result result;
+  result.actuators.push_back({act.name, closing_tension_N - 1e-3, 0.0});
+  flag_closed_coils(model, result);
+  EXPECT_TRUE(result.actuators[0].below_closed_length);
+  EXPECT_EQ(to_json(result)["actuators"][0]["below_closed_length"], true);
+
+  result.actuators[0].tension_N = closing_tension_N + 1e-3;
+  flag_closed_coils(model, result);
+  EXPECT_FALSE(result.actuators[0].below_closed_length);
+  EXPECT_FALSE(to_json(result)["actuators"][0].contains("below_closed_length"));
 }
 
 }  // namespace
