@@ -11,7 +11,7 @@
 // Run: build-fe2/bench/bench_beam_fe --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include "../tests/beam_fe/models.hpp"
+#include "beam_fe/models.hpp"
 #include "beam_fe/beam_fe.hpp"
 #include "common/units.hpp"
 

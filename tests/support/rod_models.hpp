@@ -1,0 +1,172 @@
+#pragma once
+/// Rod models built in code for the solver tests and benchmarks (no scenario files: these
+/// tests must not depend on the parser). Shared by tests/cosserat, tests/beam_fe and bench/.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "common/units.hpp"
+#include "rod/model.hpp"
+#include "rod/scenario.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::test_support {
+
+/// A uniform rod along +z from the origin with a circular section of diameter d.
+inline rod::RodModel circular_rod(double length_m, double diameter_m, double E_Pa, double poisson,
+                                  double density_kg_m3) {
+  rod::RodModel m;
+  m.name = "circular-rod";
+  m.length_m = length_m;
+  m.section.shape = rod::Section::Shape::kCircle;
+  m.section.width_m = diameter_m;
+  m.section.height_m = diameter_m;
+  m.section.area_m2 = units::kPi * diameter_m * diameter_m / 4.0;
+  m.section.I_x_m4 = units::kPi * std::pow(diameter_m, 4) / 64.0;
+  m.section.I_y_m4 = m.section.I_x_m4;
+  m.section.J_m4 = 2.0 * m.section.I_x_m4;
+  m.material.youngs_modulus_Pa = E_Pa;
+  m.material.poisson_ratio = poisson;
+  m.material.shear_modulus_Pa = E_Pa / (2.0 * (1.0 + poisson));
+  m.material.density_kg_m3 = density_kg_m3;
+  return m;
+}
+
+/// A square section of side a (polar moment as torsion constant, as the paper does).
+inline rod::RodModel square_rod(double length_m, double side_m, double E_Pa, double poisson,
+                                double density_kg_m3) {
+  rod::RodModel m = circular_rod(length_m, side_m, E_Pa, poisson, density_kg_m3);
+  m.name = "square-rod";
+  m.section.shape = rod::Section::Shape::kRectangle;
+  m.section.area_m2 = side_m * side_m;
+  m.section.I_x_m4 = std::pow(side_m, 4) / 12.0;
+  m.section.I_y_m4 = m.section.I_x_m4;
+  m.section.J_m4 = 2.0 * m.section.I_x_m4;
+  return m;
+}
+
+/// A rod along body e3 with given stiffnesses EA, GA, EI_x, EI_y, GJ (E = 1 Pa, custom section).
+inline rod::RodModel stiffness_rod(double length_m, double EA, double GA, double EI_x, double EI_y,
+                                   double GJ) {
+  rod::RodModel m;
+  m.name = "stiffness-rod";
+  m.length_m = length_m;
+  m.section.shape = rod::Section::Shape::kCustom;
+  m.material.youngs_modulus_Pa = 1.0;
+  m.material.shear_modulus_Pa = GA / EA;
+  m.section.area_m2 = EA;
+  m.section.I_x_m4 = EI_x;
+  m.section.I_y_m4 = EI_y;
+  m.section.J_m4 = GJ / m.material.shear_modulus_Pa;
+  return m;
+}
+
+/// A custom section with given stiffnesses: EA, GA, EI (both axes), GJ (E = 1 Pa).
+inline rod::RodModel custom_rod(double length_m, double EA, double GA, double EI, double GJ) {
+  rod::RodModel m = stiffness_rod(length_m, EA, GA, EI, EI, GJ);
+  m.name = "custom-rod";
+  return m;
+}
+
+/// Appends a tension-driven string (straight at (x, y), or a helix when turns_per_m != 0).
+inline void add_tension_string(rod::RodModel& m, const std::string& name, double x_m, double y_m,
+                               double tension_N, int count = 1, double turns_per_m = 0.0) {
+  rod::Actuator a;
+  a.name = name;
+  a.count = count;
+  if (turns_per_m == 0.0) {
+    a.routing.type = rod::Routing::Type::kStraight;
+    a.routing.offset_m = {x_m, y_m};
+    a.rest_length_m = m.length_m;
+  } else {
+    a.routing.type = rod::Routing::Type::kHelix;
+    a.routing.radius_m = std::hypot(x_m, y_m);
+    a.routing.phase_rad = std::atan2(y_m, x_m);
+    a.routing.turns_per_m = turns_per_m;
+    const double w = 2.0 * units::kPi * turns_per_m * a.routing.radius_m;
+    a.rest_length_m = std::sqrt(1.0 + w * w) * m.length_m;
+  }
+  a.drive.type = rod::Drive::Type::kTension;
+  a.drive.tension_N = tension_N;
+  a.length_ratio = a.rest_length_m / m.length_m;
+  m.actuators.push_back(a);
+}
+
+/// The paper's manipulator TCA ([Pawlowski2019] Section V-B): extension, D = 1.7 mm,
+/// alpha0 = 15 deg, N = 76.4 turns, coiled length 40 mm, silver-nylon-sun2022.
+inline std::shared_ptr<const tca::Tca> manipulator_tca() {
+  tca::Parameters p;
+  p.kind = tca::Kind::kExtension;
+  p.coiled_length_m = 0.040;
+  p.fiber_length_m = tca::fiber_length_from_pitch(0.040, units::deg_to_rad(15.0));
+  p.outer_diameter_m = 0.0017;
+  p.twist_turns = 76.4;
+  p.f12_form = tca::F12Form::kCastigliano;
+  return std::make_shared<const tca::Tca>(p, rod::load_material("silver-nylon-sun2022", "material"));
+}
+
+/// Appends a TCA-driven straight string at (x, y) at uniform temperature t_K.
+inline void add_tca_string(rod::RodModel& m, const std::string& name,
+                           std::shared_ptr<const tca::Tca> tca, double x_m, double y_m, double t_K,
+                           int count = 1) {
+  rod::Actuator a;
+  a.name = name;
+  a.routing.type = rod::Routing::Type::kStraight;
+  a.routing.offset_m = {x_m, y_m};
+  a.count = count;
+  a.drive.type = rod::Drive::Type::kTca;
+  a.drive.tca_id = "tca";
+  a.drive.tca = tca;
+  a.drive.segments = {tca::Segment{1.0, t_K}};
+  a.rest_length_m = tca->parameters().coiled_length_m;
+  a.length_ratio = a.rest_length_m / m.length_m;
+  m.tcas["tca"] = std::move(tca);
+  m.actuators.push_back(a);
+}
+
+/// Initial bending of the circular manipulator (physics-notes: it has one; the paper
+/// gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the TCA,
+/// so the cold TCA is slightly stretched (delta > 0, coils open).
+inline const Eigen::Vector3d kCircularInitialCurvature_1_m{0.0, -0.5, 0.0};
+/// Gravity: the manipulators stand on their base with the centerline along +z, so
+/// gravity is along -z.
+inline const Eigen::Vector3d kStandingGravity_m_s2{0.0, 0.0, -9.81};
+
+/// The paper's circular manipulator (Section V-B): 8 mm diameter, 40 mm long, EcoFlex
+/// (E = 37.8 kPa, nu = 0.5, 1040 kg/m^3), one extension TCA at +3 mm along body x.
+inline rod::RodModel circular_manipulator(double temperature_K) {
+  rod::RodModel m = circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
+  m.name = "circular-manipulator";
+  m.reference_curvature_B_1_m = kCircularInitialCurvature_1_m;
+  m.gravity_W_m_s2 = kStandingGravity_m_s2;
+  add_tca_string(m, "tca", manipulator_tca(), 0.003, 0.0, temperature_K);
+  return m;
+}
+
+/// The paper's square manipulator (Section V-B): 10 mm square, 40 mm, U-shaped TCA
+/// (count 2) at +3 mm along body x, no initial bending.
+inline rod::RodModel square_manipulator(double temperature_K) {
+  rod::RodModel m = square_rod(0.040, 0.010, 37.8e3, 0.5, 1040.0);
+  m.name = "square-manipulator";
+  m.gravity_W_m_s2 = kStandingGravity_m_s2;
+  add_tca_string(m, "tca", manipulator_tca(), 0.003, 0.0, temperature_K, 2);
+  return m;
+}
+
+/// 4-tendon steel rod: E = 200 GPa, G = 80 GPa, r = 1 mm, L = 0.5 m, 8000 kg/m^3,
+/// gravity 9.81 along +x, tendons at 15.06 mm at 0/90/180/270 deg, tensions (15, 0, 0, 0) N.
+inline rod::RodModel steel_tendon_rod() {
+  rod::RodModel m = circular_rod(0.5, 0.002, 200e9, 0.25, 8000.0);
+  m.name = "steel-4-tendon";
+  m.material.shear_modulus_Pa = 80e9;
+  m.gravity_W_m_s2 = {9.81, 0.0, 0.0};
+  const double r = 0.01506;
+  add_tension_string(m, "t0", r, 0.0, 15.0);
+  add_tension_string(m, "t90", 0.0, r, 0.0);
+  add_tension_string(m, "t180", -r, 0.0, 0.0);
+  add_tension_string(m, "t270", 0.0, -r, 0.0);
+  return m;
+}
+
+}  // namespace tcasim::test_support
