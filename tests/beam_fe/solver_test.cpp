@@ -16,6 +16,10 @@
 namespace tcasim::beam_fe {
 namespace {
 
+using testing::options;
+using testing::run;
+using testing::Solved;
+
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 constexpr double kPi = units::kPi;
@@ -24,23 +28,6 @@ constexpr double kPi = units::kPi;
 /// 1e-10 by default; here tightened): constant-strain states are exact on any mesh.
 constexpr double kExact = 1e-10;
 
-Options options(int elements, int order) {
-  Options o;
-  o.elements = elements;
-  o.order = order;
-  o.tolerance_rel = 1e-12;
-  return o;
-}
-
-struct Solved {
-  Summary summary;
-  State state;
-};
-Solved run(const rod::RodModel& model, const Options& opt) {
-  Solved s;
-  s.summary = solve(model, opt, s.state);
-  return s;
-}
 
 /// Two straight tension strings (one doubled) on a steel-like rod, no gravity.
 rod::RodModel straight_strings_rod() {

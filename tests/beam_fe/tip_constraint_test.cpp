@@ -14,26 +14,13 @@
 namespace tcasim::beam_fe {
 namespace {
 
+using testing::options;
+using testing::run;
+using testing::Solved;
+
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-Options options(int elements, int order = 2) {
-  Options o;
-  o.elements = elements;
-  o.order = order;
-  o.tolerance_rel = 1e-12;
-  return o;
-}
-
-struct Solved {
-  Summary summary;
-  State state;
-};
-Solved run(const rod::RodModel& model, const Options& opt) {
-  Solved s;
-  s.summary = solve(model, opt, s.state);
-  return s;
-}
 
 /// Stress-free tip of a model (exact arc of omega* from the clamp).
 Vector3d reference_tip(const rod::RodModel& m) {

@@ -12,6 +12,7 @@
 
 #include "common/units.hpp"
 #include "cosserat/models.hpp"
+#include "support/finite_difference.hpp"
 #include "support/convergence.hpp"
 
 namespace tcasim::cosserat {
@@ -426,11 +427,7 @@ Eigen::MatrixXd jacobian_by(JacobianMethod method, int steps = 40) {
 TEST(ShootingJacobian, SensitivityJacobianMatchesCentralDifferencesOfTheResidual) {
   const Eigen::MatrixXd Js = jacobian_by(JacobianMethod::kSensitivity);
   const Eigen::MatrixXd Jc = jacobian_by(JacobianMethod::kCentralDifference);
-  // Column-wise: each unknown has its own scale.
-  double worst = 0.0;
-  for (int j = 0; j < Jc.cols(); ++j) {
-    worst = std::max(worst, (Js.col(j) - Jc.col(j)).norm() / Jc.col(j).norm());
-  }
+  const double worst = test_support::worst_column_relative_difference(Js, Jc);
   std::printf("[jacobian] sensitivity vs central differences: %.2e (worst column, relative)\n", worst);
   /// Central differences with h = eps^(1/3) max(|x|, typical) err by ~1e-10 relative
   /// (truncation ~h^2 times the third derivative, round-off ~eps |r| / h).

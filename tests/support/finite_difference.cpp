@@ -53,4 +53,12 @@ Eigen::MatrixXd jacobian(const std::function<Eigen::VectorXd(const Eigen::Vector
   return J;
 }
 
+double worst_column_relative_difference(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  double worst = 0.0;
+  for (Eigen::Index j = 0; j < B.cols(); ++j) {
+    worst = std::max(worst, (A.col(j) - B.col(j)).norm() / B.col(j).norm());
+  }
+  return worst;
+}
+
 }  // namespace tcasim::test_support

@@ -29,4 +29,8 @@ Eigen::VectorXd gradient(const std::function<double(const Eigen::VectorXd&)>& f,
 Eigen::MatrixXd jacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
                          const Eigen::VectorXd& x, double relative_step = default_relative_step());
 
+/// Worst column-wise relative difference max_j |A_j - B_j| / |B_j| (each column of a
+/// Jacobian has its own scale); B is the reference.
+double worst_column_relative_difference(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+
 }  // namespace tcasim::test_support
