@@ -85,11 +85,12 @@ T check_created(T object, const char* call) {
 void validate(int dimension, const IntegratorOptions& o) {
   require(dimension >= 1, "dimension", dimension, "must be >= 1");
   require(o.output_intervals >= 0, "output_intervals", o.output_intervals, "must be >= 0");
-  if (o.method == Method::kRk4) {
+  if (is_fixed_step(o.method)) {
     require(o.steps >= 1, "steps", o.steps, "must be >= 1");
     if (o.output_intervals != 0 && o.steps % o.output_intervals != 0)
       throw InputError("output_intervals", std::to_string(o.output_intervals),
-                       fmt::format("must divide steps = {} (RK4 observes at step nodes)", o.steps));
+                       fmt::format("must divide steps = {} ({} observes at step nodes)", o.steps,
+                                   to_string(o.method)));
   } else {
     require(o.relative_tolerance > 0.0, "relative_tolerance", o.relative_tolerance, "must be > 0");
     require(o.absolute_tolerance > 0.0, "absolute_tolerance", o.absolute_tolerance, "must be > 0");
@@ -105,16 +106,30 @@ double output_point(double s0, double s1, int k, int M) {
 
 }  // namespace
 
+const char* to_string(Method m) {
+  switch (m) {
+    case Method::kRk4: return "rk4";
+    case Method::kRk6: return "rk6";
+    case Method::kCvode: return "cvode";
+  }
+  return "unknown";
+}
+
 struct Integrator::Impl {
   Impl(int n, const IntegratorOptions& o)
       : options(o), dimension(n), k1(n), k2(n), k3(n), k4(n), y_stage(n), y_next(n) {
+    if (options.method == Method::kRk6) {
+      k5.resize(n);
+      k6.resize(n);
+      k7.resize(n);
+    }
     if (options.method == Method::kCvode) setup_cvode();
   }
 
   IntegratorOptions options;
   int dimension;
-  // RK4 work vectors (also the CVODE RHS copy buffers y_stage -> k1).
-  Eigen::VectorXd k1, k2, k3, k4, y_stage, y_next;
+  // Fixed-step work vectors (also the CVODE RHS copy buffers y_stage -> k1); k5..k7 for kRk6.
+  Eigen::VectorXd k1, k2, k3, k4, k5, k6, k7, y_stage, y_next;
 
   // CVODE objects, declared so that they are destroyed in reverse dependency order
   // (CVODE memory first, the context last).
@@ -136,8 +151,12 @@ struct Integrator::Impl {
   static void cvode_error_handler(int code, const char* module, const char* function, char* msg,
                                   void* user_data);
 
-  IntegrationSummary integrate_rk4(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
-                                   const Observer& observer);
+  /// kRk4 and kRk6: equal steps, observer at step nodes.
+  IntegrationSummary integrate_fixed(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
+                                     const Observer& observer);
+  /// One step of the fixed-step method from (s, y) to s_next = s + h; result in y_next.
+  void rk4_step(const RhsFunction& f, double s, double h, double s_next, const Eigen::VectorXd& y);
+  void rk6_step(const RhsFunction& f, double s, double h, double s_next, const Eigen::VectorXd& y);
   IntegrationSummary integrate_cvode(const RhsFunction& f, double s0, double s1, Eigen::VectorXd& y,
                                      const Observer& observer);
 };
@@ -205,9 +224,51 @@ void Integrator::Impl::cvode_error_handler(int code, const char* module, const c
                                          msg != nullptr ? msg : "");
 }
 
-IntegrationSummary Integrator::Impl::integrate_rk4(const RhsFunction& f, double s0, double s1,
-                                                   Eigen::VectorXd& y, const Observer& observer) {
+void Integrator::Impl::rk4_step(const RhsFunction& f, double s, double h, double s_next,
+                                const Eigen::VectorXd& y) {
+  // Classical RK4: y+ = y + h/6 (k1 + 2 k2 + 2 k3 + k4).
+  f(s, y, k1);
+  y_stage = y + (0.5 * h) * k1;
+  f(s + 0.5 * h, y_stage, k2);
+  y_stage = y + (0.5 * h) * k2;
+  f(s + 0.5 * h, y_stage, k3);
+  y_stage = y + h * k3;
+  f(s_next, y_stage, k4);
+  y_next = y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+}
+
+void Integrator::Impl::rk6_step(const RhsFunction& f, double s, double h, double s_next,
+                                const Eigen::VectorXd& y) {
+  // Butcher's seven-stage sixth-order tableau ([Butcher2008]):
+  //   c   | A
+  //   1/3 | 1/3
+  //   2/3 | 0     2/3
+  //   1/3 | 1/12  1/3   -1/12
+  //   1/2 | -1/16 9/8   -3/16  -3/8
+  //   1/2 | 0     9/8   -3/8   -3/4  1/2
+  //   1   | 9/44  -9/11 63/44  18/11 0    -16/11
+  //   b   = 11/120, 0, 27/40, 27/40, -4/15, -4/15, 11/120
+  f(s, y, k1);
+  y_stage = y + (h / 3.0) * k1;
+  f(s + h / 3.0, y_stage, k2);
+  y_stage = y + (2.0 * h / 3.0) * k2;
+  f(s + 2.0 * h / 3.0, y_stage, k3);
+  y_stage = y + (h / 12.0) * (k1 + 4.0 * k2 - k3);
+  f(s + h / 3.0, y_stage, k4);
+  y_stage = y + (h / 16.0) * (-k1 + 18.0 * k2 - 3.0 * k3 - 6.0 * k4);
+  f(s + 0.5 * h, y_stage, k5);
+  y_stage = y + (h / 8.0) * (9.0 * k2 - 3.0 * k3 - 6.0 * k4 + 4.0 * k5);
+  f(s + 0.5 * h, y_stage, k6);
+  y_stage = y + (h / 44.0) * (9.0 * k1 - 36.0 * k2 + 63.0 * k3 + 72.0 * k4 - 64.0 * k6);
+  f(s_next, y_stage, k7);
+  y_next = y + (h / 120.0) * (11.0 * (k1 + k7) + 81.0 * (k3 + k4) - 32.0 * (k5 + k6));
+}
+
+IntegrationSummary Integrator::Impl::integrate_fixed(const RhsFunction& f, double s0, double s1,
+                                                     Eigen::VectorXd& y, const Observer& observer) {
   IntegrationSummary summary;
+  const bool rk6 = options.method == Method::kRk6;
+  const int stages = rk6 ? 7 : 4;
   const int n_steps = options.steps;
   const int observe_every = options.output_intervals == 0 ? 1 : n_steps / options.output_intervals;
   const double h = (s1 - s0) / n_steps;
@@ -216,21 +277,17 @@ IntegrationSummary Integrator::Impl::integrate_rk4(const RhsFunction& f, double 
   for (int i = 0; i < n_steps; ++i) {
     const double s = s0 + i * h;
     const double s_next = i + 1 == n_steps ? s1 : s0 + (i + 1) * h;
-    // Classical RK4: y+ = y + h/6 (k1 + 2 k2 + 2 k3 + k4).
-    f(s, y, k1);
-    y_stage = y + (0.5 * h) * k1;
-    f(s + 0.5 * h, y_stage, k2);
-    y_stage = y + (0.5 * h) * k2;
-    f(s + 0.5 * h, y_stage, k3);
-    y_stage = y + h * k3;
-    f(s_next, y_stage, k4);
-    summary.rhs_evaluations += 4;
-    y_next = y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    if (rk6) {
+      rk6_step(f, s, h, s_next, y);
+    } else {
+      rk4_step(f, s, h, s_next, y);
+    }
+    summary.rhs_evaluations += stages;
     if (!y_next.allFinite()) {
       summary.status = IntegrationSummary::Status::kFailed;
       summary.message = fmt::format(
-          "RK4: the state became non-finite in step {} of {} (s = {} -> {}); y is left at s = {}",
-          i + 1, n_steps, s, s_next, s);
+          "{}: the state became non-finite in step {} of {} (s = {} -> {}); y is left at s = {}",
+          rk6 ? "RK6" : "RK4", i + 1, n_steps, s, s_next, s);
       return summary;
     }
     y = y_next;
@@ -312,7 +369,7 @@ IntegrationSummary Integrator::integrate(const RhsFunction& f, double s0, double
     throw InputError("y.size()", std::to_string(y.size()),
                      fmt::format("must equal the integrator dimension {}", impl_->dimension));
   if (!y.allFinite()) throw InputError("y", "(non-finite entries)", "must be finite at s0");
-  return impl_->options.method == Method::kRk4 ? impl_->integrate_rk4(f, s0, s1, y, observer)
+  return is_fixed_step(impl_->options.method) ? impl_->integrate_fixed(f, s0, s1, y, observer)
                                                : impl_->integrate_cvode(f, s0, s1, y, observer);
 }
 

@@ -45,6 +45,11 @@ constexpr int kMaxSensitivityUnknowns = 16;
 /// Scaled residual to which the coarse level is converged: coarse IVPs are cheap, and the
 /// coarse-grid correction of a warm start is only as accurate as the coarse solutions.
 constexpr double kCoarseTolerance = 1e-9;
+/// Path extrapolation (ShootingSolver::kPathHistory): relative distance from the line below
+/// which an earlier actuation counts as on it, and the smallest spacing of the path's
+/// parameters in units of the new step.
+constexpr double kPathCollinearity = 1e-9;
+constexpr double kPathMinSpacing = 0.5;
 constexpr double kForwardStep = 1.4901161193847656e-08;  // sqrt(eps)
 constexpr double kCentralStep = 6.0554544523933395e-06;  // eps^(1/3)
 
@@ -347,7 +352,7 @@ struct ShootingSolver::Impl {
     }
     ode::IntegratorOptions coarse = options.integrator;
     coarse.steps = options.coarse_steps;
-    const bool use_coarse = options.integrator.method == ode::Method::kRk4 &&
+    const bool use_coarse = ode::is_fixed_step(options.integrator.method) &&
                             options.coarse_steps > 0 &&
                             2 * options.coarse_steps <= options.integrator.steps;
     if (use_coarse) coarse_integrator.emplace(dim, coarse);
@@ -397,7 +402,7 @@ struct ShootingSolver::Impl {
     require(o.centerline_intervals >= 0 && o.centerline_intervals % 2 == 0,
             "options.centerline_intervals", o.centerline_intervals,
             "must be even and >= 0 (a sample must lie at L/2)");
-    if (o.integrator.method == ode::Method::kRk4) {
+    if (ode::is_fixed_step(o.integrator.method)) {
       require(o.integrator.steps % 2 == 0, "options.integrator.steps", o.integrator.steps,
               "must be even (a node must lie at L/2)");
       require(o.centerline_intervals == 0 || o.integrator.steps % o.centerline_intervals == 0,
@@ -982,8 +987,9 @@ struct ShootingSolver::Impl {
 
   /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
   /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
-  /// removes the leading O(h^4) term of the discretization error of x:
-  ///   x(N) = x* + C N^-4  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-4 - N_m^-4) / (N_m^-4 - N_c^-4).
+  /// removes the leading O(h^p) term (p: the method's order, 4 or 6) of the discretization
+  /// error of x:
+  ///   x(N) = x* + C N^-p  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-p - N_m^-p) / (N_m^-p - N_c^-p).
   /// On failure x, J keep the coarse solution.
   void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc, const Eigen::MatrixXd& Jc,
                           Eigen::VectorXd& x, Eigen::MatrixXd& J, Summary& summary) {
@@ -994,9 +1000,10 @@ struct ShootingSolver::Impl {
     const Summary::Status sm = newton(act, 1.0, xm, Jm, summary, why, kCoarseTolerance);
     use_level(false);
     if (sm != Summary::Status::kConverged) return;
-    const double a = std::pow(static_cast<double>(options.coarse_steps), -4.0);
-    const double b = std::pow(2.0 * options.coarse_steps, -4.0);
-    const double c = std::pow(static_cast<double>(options.integrator.steps), -4.0);
+    const double p = ode::order_of(options.integrator.method);
+    const double a = std::pow(static_cast<double>(options.coarse_steps), -p);
+    const double b = std::pow(2.0 * options.coarse_steps, -p);
+    const double c = std::pow(static_cast<double>(options.integrator.steps), -p);
     x = xm + ((c - b) / (b - a)) * (xm - xc);
     J = Jm;
   }
@@ -1036,6 +1043,75 @@ struct ShootingSolver::Impl {
       J.row(k) *= ratio;
       J(k, k) += 1.0 / Fc;
     }
+  }
+
+  /// The actuation as a flat vector (documented at ShootingSolver::solve).
+  static Eigen::VectorXd actuation_vector(const Actuation& act) {
+    int n = 9;
+    for (const ActuatorDrive& d : act.actuators) n += 1 + 2 * static_cast<int>(d.segments.size());
+    Eigen::VectorXd a(n);
+    int k = 0;
+    for (const ActuatorDrive& d : act.actuators) {
+      a[k++] = d.tension_N;
+      for (const tca::Segment& seg : d.segments) {
+        a[k++] = seg.fraction;
+        a[k++] = seg.temperature_K;
+      }
+    }
+    a.segment<3>(k) = act.tip_force_W_N;
+    a.segment<3>(k + 3) = act.tip_moment_W_Nm;
+    a.segment<3>(k + 6) = act.gravity_W_m_s2;
+    return a;
+  }
+
+  /// Extrapolates the unknowns to the actuation a along Solution::path: the newest points
+  /// whose actuations lie on the line through the last one and a, with parameter t (0 at
+  /// the last point, 1 at a), each older point at least kPathMinSpacing behind the next (no
+  /// wild extrapolation from clustered points), are interpolated by the Lagrange polynomial
+  /// in t evaluated at t = 1. Returns false when fewer than two points qualify (or a is the
+  /// last point's actuation).
+  static bool extrapolate_path(const Solution& sol, const Eigen::VectorXd& a, int nx,
+                               Eigen::VectorXd& x) {
+    const auto& path = sol.path;
+    if (path.size() < 2) return false;
+    const Solution::PathPoint& last = path.back();
+    if (last.actuation.size() != a.size() || last.unknowns.size() != nx) return false;
+    const Eigen::VectorXd d = a - last.actuation;
+    const double dd = d.squaredNorm();
+    if (!(dd > 0.0) || !std::isfinite(dd)) return false;
+    std::vector<double> t{0.0};
+    for (int k = static_cast<int>(path.size()) - 2; k >= 0; --k) {
+      const Solution::PathPoint& p = path[k];
+      if (p.actuation.size() != a.size() || p.unknowns.size() != nx) break;
+      const Eigen::VectorXd v = p.actuation - last.actuation;
+      const double tk = v.dot(d) / dd;
+      // On the line (to round-off of the actuation values) and behind the previous node.
+      if ((v - tk * d).norm() > kPathCollinearity * (v.norm() + std::sqrt(dd))) break;
+      if (tk > t.back() - kPathMinSpacing) break;
+      t.push_back(tk);
+    }
+    const int m = static_cast<int>(t.size());
+    if (m < 2) return false;
+    x.setZero(nx);
+    for (int k = 0; k < m; ++k) {
+      double w = 1.0;  // Lagrange basis polynomial of node t[k] at t = 1
+      for (int l = 0; l < m; ++l) {
+        if (l != k) w *= (1.0 - t[l]) / (t[k] - t[l]);
+      }
+      x += w * path[path.size() - 1 - k].unknowns;  // t[k] belongs to the k-th newest point
+    }
+    return x.allFinite();
+  }
+
+  /// Updates Solution::path after a solve (see its documentation).
+  static void record_path(Solution& sol, bool warm, bool converged, Eigen::VectorXd a) {
+    if (!converged) {
+      sol.path.clear();
+      return;
+    }
+    if (!warm) sol.path.clear();
+    sol.path.push_back({std::move(a), sol.unknowns});
+    if (static_cast<int>(sol.path.size()) > ShootingSolver::kPathHistory) sol.path.erase(sol.path.begin());
   }
 
   void remember(double lambda, const Eigen::VectorXd& x) {
@@ -1106,21 +1182,37 @@ struct ShootingSolver::Impl {
                 "must not be empty for a TCA drive");
       }
     }
+    const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
     auto done = [&](Summary::Status st, std::string why, const Eigen::VectorXd& x) {
       summary.status = st;
       summary.message = st == Summary::Status::kConverged ? std::string() : std::move(why);
       finish(act, x, sol, summary);
       sol.valid = st == Summary::Status::kConverged;
+      record_path(sol, warm, sol.valid, actuation_vector(act));
       summary.ivp_count = ivp_count;
       summary.wall_time_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return summary;
     };
 
-    const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
+    std::string why;
+    if (warm) {
+      // A sweep: start from the extrapolation along the path, with a fresh (coarse-level)
+      // sensitivity Jacobian there if there is a coarse level, else the last one; fall back
+      // to the last solution if that start does not converge.
+      Eigen::VectorXd xp;
+      Eigen::MatrixXd Jp;
+      if (!coarse_sens_integrator) Jp = sol.jacobian;
+      if (extrapolate_path(sol, actuation_vector(act), nx, xp) &&
+          newton(act, 1.0, xp, Jp, summary, why, options.tolerance) == Summary::Status::kConverged) {
+        sol.jacobian = Jp;
+        sol.coarse_unknowns.resize(0);
+        sol.coarse_jacobian.resize(0, 0);
+        return done(Summary::Status::kConverged, "", xp);
+      }
+    }
     Eigen::VectorXd x = warm ? sol.unknowns : straight_guess(act, 1.0);
     Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
-    std::string why;
     // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
     // (cheap IVPs); its solution is within the coarse discretization error of the fine one.
     // Warm: coarse-grid correction x = x_fine,old + (x_coarse,new - x_coarse,old), whose
@@ -1211,8 +1303,12 @@ struct ShootingSolver::Impl {
     rod::Result res;
     res.scenario = model.name;
     res.method = "cosserat";
-    if (options.integrator.method == ode::Method::kRk4) {
+    if (ode::is_fixed_step(options.integrator.method)) {
       res.discretization = {{"steps", static_cast<double>(options.integrator.steps)}};
+      // RK4 (the paper's scheme) is the default and has no key; other schemes name their order.
+      if (options.integrator.method != ode::Method::kRk4) {
+        res.discretization.push_back({"order", static_cast<double>(ode::order_of(options.integrator.method))});
+      }
     } else {
       res.discretization = {{"rtol", options.integrator.relative_tolerance}};
     }

@@ -91,8 +91,8 @@ enum class Kinematics {
 
 /// Solver options (validated by ShootingSolver's constructor: InputError naming the field).
 struct Options {
-  /// IVP integrator: kRk4 with `steps` (even, so a node lies at L/2) or kCvode with
-  /// `relative_tolerance`. output_intervals is ignored (set by the solver).
+  /// IVP integrator: kRk4 (the paper's scheme) or kRk6 with `steps` (even, so a node lies at
+  /// L/2), or kCvode with `relative_tolerance`. output_intervals is ignored (set by the solver).
   ode::IntegratorOptions integrator;
   /// Pose integration: kFlat (default) or the Lie-group RKMK4 method.
   Kinematics kinematics = Kinematics::kFlat;
@@ -108,21 +108,22 @@ struct Options {
   bool continuation = true;
   /// Smallest continuation step in the load fraction before giving up.
   double min_continuation_step = 1.0 / 1024.0;
-  /// Multi-level solve with kRk4: a coarse problem with this many RK4 steps is converged
-  /// first (to a scaled residual of 1e-9); a cold start then converges a middle level with
-  /// twice as many steps (if 4 x this <= steps) and starts `integrator.steps` at the
-  /// Richardson extrapolation of the two (O(h^4) term removed); a warm start without a
-  /// Jacobian (or with warm_start_fine_only = false) adds the coarse solution's change to
-  /// the previous fine solution. Newton on the fine level takes its (sensitivity) Jacobians
-  /// from this coarse level, and from the fine level only if that one fails at a point.
-  /// 0 disables (also when steps < 2 x this). Only the starting point and the Jacobians
-  /// change: convergence is always tested on the fine problem.
+  /// Multi-level solve with a fixed-step method (kRk4, kRk6): a coarse problem with this
+  /// many steps is converged first (to a scaled residual of 1e-9); a cold start then
+  /// converges a middle level with twice as many steps (if 4 x this <= steps) and starts
+  /// `integrator.steps` at the Richardson extrapolation of the two (O(h^p) term removed, p
+  /// the method's order); a warm start without a Jacobian (or with warm_start_fine_only =
+  /// false) adds the coarse solution's change to the previous fine solution. Newton on the
+  /// fine level takes its (sensitivity) Jacobians from this coarse level, and from the fine
+  /// level only if that one fails at a point. 0 disables (also when steps < 2 x this). Only
+  /// the starting point and the Jacobians change: convergence is always tested on the fine
+  /// problem.
   int coarse_steps = 4;
   /// Warm starts with a Jacobian skip the coarse level and iterate on the fine problem from
   /// the previous solution with the previous (Broyden-updated) Jacobian.
   bool warm_start_fine_only = true;
   /// Centerline samples in results: 0 = every RK4 step node (64 intervals with CVODE);
-  /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4).
+  /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4, kRk6).
   int centerline_intervals = 0;
 };
 
@@ -172,12 +173,26 @@ struct Solution {
   Eigen::MatrixXd coarse_jacobian;
   std::vector<double> tensions_N;     ///< per actuator (one string)
   std::vector<double> elongations_m;  ///< per actuator (one string)
+
+  /// A converged point of a sequence of warm-started solves (a sweep).
+  struct PathPoint {
+    Eigen::VectorXd actuation;  ///< the actuation as a flat vector (see ShootingSolver::solve)
+    Eigen::VectorXd unknowns;
+  };
+  /// The last converged points (oldest first, at most ShootingSolver::kPathHistory), reset
+  /// by a cold solve and cleared by a failed one: warm starts extrapolate along them.
+  std::vector<PathPoint> path;
 };
 
 /// Shooting solver for one model. Holds a reference to the (constant) model, the
 /// integrator and work buffers; not thread-safe, cheap to reuse across solves.
 class ShootingSolver {
  public:
+  /// Converged points kept in Solution::path: a warm start whose actuation continues a
+  /// straight line through them (a sweep) starts from the polynomial extrapolation of the
+  /// unknowns through up to this many points.
+  static constexpr int kPathHistory = 4;
+
   /// Validates options; the model must outlive the solver.
   ShootingSolver(const rod::RodModel& model, const Options& options);
   ~ShootingSolver();
@@ -187,7 +202,11 @@ class ShootingSolver {
   ShootingSolver& operator=(const ShootingSolver&) = delete;
 
   /// Solves the BVP for `actuation`. If `solution.valid`, starts from it (warm start,
-  /// reusing its Jacobian); else from the straight guess (nu = nu* with the closed-form
+  /// reusing its Jacobian; when the actuation, as the flat vector (per actuator: tension,
+  /// then each segment's fraction and temperature; tip force, tip moment, gravity), lies on
+  /// the straight line through the last points of `solution.path`, from the polynomial
+  /// extrapolation of the unknowns along it with a fresh coarse-level Jacobian, falling back
+  /// to the last solution if that start does not converge); else from the straight guess (nu = nu* with the closed-form
   /// axial strain and curvature of the known tensions, omega = omega* + that, T_tca = 0).
   /// If that fails and Options::continuation, it steps the load fraction lambda from 0 to 1
   /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))

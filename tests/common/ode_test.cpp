@@ -43,6 +43,12 @@ constexpr double kOmega = 2.0;      // x'' = -omega^2 x
 // RK4 is order 4; +-0.15 allows the O(h^5) term at the coarsest levels.
 constexpr double kRk4Order = 4.0;
 constexpr double kRk4OrderTol = 0.15;
+// Butcher's seven-stage method is order 6; at the coarsest levels below the O(h^7) term
+// still raises the observed order by up to ~0.8 (measured 6.0-6.8), so the bracket is
+// one-sided wide: an order-5 (or order-4) tableau error falls outside it.
+constexpr double kRk6Order = 6.0;
+constexpr double kRk6OrderLow = 0.2;
+constexpr double kRk6OrderHigh = 0.9;
 // CVODE controls the local error; the global error over a few periods may exceed
 // rtol by the accumulation over steps: allow a factor 100 (two decades of margin
 // would still catch a tolerance that is ignored or misapplied).
@@ -67,6 +73,12 @@ IntegratorOptions rk4(int steps, int output_intervals = 0) {
   o.method = Method::kRk4;
   o.steps = steps;
   o.output_intervals = output_intervals;
+  return o;
+}
+
+IntegratorOptions rk6(int steps, int output_intervals = 0) {
+  IntegratorOptions o = rk4(steps, output_intervals);
+  o.method = Method::kRk6;
   return o;
 }
 
@@ -124,6 +136,85 @@ TEST(OdeRk4, NonZeroStartAndNonAutonomousRhsUseTheRightAbscissae) {
     err.push_back(std::abs(y[0] - std::sin(3.0)));
   }
   ExpectOrderInBracket(h, err, kRk4Order, kRk4OrderTol);
+}
+
+// Nonlinear pendulum x'' = -sin(x), x(0) = 1, over one period-ish; reference by RK6 with
+// 4096 steps (error ~1e-16 there).
+void pendulum(double /*s*/, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+  dy[0] = y[1];
+  dy[1] = -std::sin(y[0]);
+}
+
+/// Observed orders between consecutive levels must lie in [order - low, order + high].
+void expect_orders_in(const std::vector<double>& h, const std::vector<double>& err, double order,
+                      double low, double high) {
+  for (std::size_t i = 1; i < h.size(); ++i) {
+    const double p = std::log(err[i - 1] / err[i]) / std::log(h[i - 1] / h[i]);
+    EXPECT_GE(p, order - low) << "levels " << i - 1 << "-" << i << ": error " << err[i - 1] << " -> " << err[i];
+    EXPECT_LE(p, order + high) << "levels " << i - 1 << "-" << i << ": error " << err[i - 1] << " -> " << err[i];
+  }
+}
+
+TEST(OdeRk6, ExponentialDecayConvergesWithOrderSix) {
+  std::vector<double> h, err;
+  for (int steps : {10, 20, 40, 80}) {
+    Integrator integrator(1, rk6(steps));
+    Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0);
+    const IntegrationSummary sum = integrator.integrate(decay, 0.0, 2.0, y);
+    ASSERT_EQ(sum.status, Status::kSuccess) << sum.message;
+    EXPECT_EQ(sum.rhs_evaluations, 7L * steps);
+    EXPECT_EQ(sum.steps, steps);
+    EXPECT_EQ(sum.s_final, 2.0);
+    h.push_back(2.0 / steps);
+    err.push_back(std::abs(y[0] - std::exp(-kDecayRate * 2.0)));
+  }
+  expect_orders_in(h, err, kRk6Order, kRk6OrderLow, kRk6OrderHigh);
+}
+
+TEST(OdeRk6, NonlinearPendulumAndNonAutonomousRhsConvergeWithOrderSix) {
+  const double s1 = 6.0;
+  Integrator fine(2, rk6(4096));
+  Eigen::VectorXd ref(2);
+  ref << 1.0, 0.0;
+  ASSERT_EQ(fine.integrate(pendulum, 0.0, s1, ref).status, Status::kSuccess);
+  std::vector<double> h, err;
+  for (int steps : {12, 24, 48, 96}) {
+    Integrator integrator(2, rk6(steps));
+    Eigen::VectorXd y(2);
+    y << 1.0, 0.0;
+    ASSERT_EQ(integrator.integrate(pendulum, 0.0, s1, y).status, Status::kSuccess);
+    h.push_back(s1 / steps);
+    err.push_back((y - ref).norm());
+  }
+  expect_orders_in(h, err, kRk6Order, kRk6OrderLow, kRk6OrderHigh);
+  // y' = s^5 (degree 5, the highest an order-6 method integrates exactly), from s0 = 1.
+  Integrator one(1, rk6(3));
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0 / 6.0);
+  const auto f = [](double s, const Eigen::VectorXd&, Eigen::VectorXd& dy) { dy[0] = std::pow(s, 5); };
+  ASSERT_EQ(one.integrate(f, 1.0, 2.5, y).status, Status::kSuccess);
+  EXPECT_NEAR(y[0], std::pow(2.5, 6) / 6.0, 1e-12);
+}
+
+TEST(OdeRk6, StepsDoNotAllocateAndObserverSeesStepNodes) {
+  constexpr int kDim = 12;
+  Integrator integrator(kDim, rk6(100, 25));
+  Eigen::VectorXd y = Eigen::VectorXd::Ones(kDim);
+  const RhsFunction f = decay;
+  integrator.integrate(f, 0.0, 1.0, y);  // warm-up
+  y.setOnes();
+  const long before = g_allocations.load();
+  const IntegrationSummary sum = integrator.integrate(f, 0.0, 1.0, y);
+  EXPECT_EQ(g_allocations.load() - before, 0) << "heap allocations during 100 RK6 steps";
+  ASSERT_EQ(sum.status, Status::kSuccess);
+  std::vector<double> seen;
+  y.setOnes();
+  integrator.integrate(f, 0.0, 1.0, y, [&seen](double s, const Eigen::VectorXd&) { seen.push_back(s); });
+  ASSERT_EQ(seen.size(), 26u);
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_DOUBLE_EQ(seen[1], 0.04);
+  EXPECT_EQ(seen.back(), 1.0);
+  EXPECT_EQ(to_string(Method::kRk6), std::string("rk6"));
+  EXPECT_EQ(order_of(Method::kRk6), 6);
 }
 
 // Oscillator over ~1.6 periods with CVODE at rtol (atol = 1e-3 rtol); returns the
@@ -333,6 +424,8 @@ std::string rejected_key(F&& make) {
 }
 
 TEST(OdeOptions, InvalidOptionsAreRejectedNamingTheField) {
+  EXPECT_EQ(rejected_key([] { Integrator(1, rk6(0)); }), "steps");
+  EXPECT_EQ(rejected_key([] { Integrator(1, rk6(10, 4)); }), "output_intervals");
   EXPECT_EQ(rejected_key([] { Integrator(1, rk4(0)); }), "steps");
   EXPECT_EQ(rejected_key([] { Integrator(1, rk4(-3)); }), "steps");
   EXPECT_EQ(rejected_key([] { Integrator(0, rk4(10)); }), "dimension");

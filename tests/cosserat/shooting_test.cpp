@@ -56,6 +56,12 @@ Options rk4_options(int steps, double tolerance = 1e-12) {
   return o;
 }
 
+Options rk6_options(int steps, double tolerance = 1e-12) {
+  Options o = rk4_options(steps, tolerance);
+  o.integrator.method = ode::Method::kRk6;
+  return o;
+}
+
 // --------------------------------------------------------------------------------------
 // Closed form: straight strings, constant offsets, uniform tensions, no gravity.
 
@@ -370,6 +376,56 @@ TEST(ShootingConvergence, Rk4TipErrorHasObservedOrderFourWithGravity) {
   test_support::ExpectOrderInBracket(h, e, 4.0, kOrderTolerance);
 }
 
+TEST(ShootingConvergence, Rk6TipErrorHasObservedOrderSixWithGravity) {
+  const rod::RodModel m = general_3d_rod();
+  const Actuation act = Actuation::from_model(m);
+  auto tip = [&](const Options& o) {
+    ShootingSolver solver(m, o);
+    Solution sol;
+    const Summary s = solver.solve(act, sol);
+    EXPECT_TRUE(s.converged()) << s.message;
+    return Vector3d(sol.tip_state.head<3>());
+  };
+  const Vector3d ref = tip(rk4_options(4096, 1e-13));  // error ~1e-15 m
+  std::vector<double> h, e;
+  // Errors from ~1e-9 m down to ~3e-13 m, above the reference's and the solve's round-off.
+  for (int n : {8, 16, 32}) {
+    h.push_back(m.length_m / n);
+    e.push_back((tip(rk6_options(n, 1e-13)) - ref).norm());
+  }
+  std::printf("%s", test_support::convergence_table(h, e).c_str());
+  /// Order 6; the O(h^7) term may raise the observed order at these levels (as in the
+  /// integrator's own tests), never to the next even order 8.
+  constexpr double kOrderBelow = 0.3;
+  constexpr double kOrderAbove = 0.9;
+  for (std::size_t i = 1; i < h.size(); ++i) {
+    const double p = std::log(e[i - 1] / e[i]) / std::log(h[i - 1] / h[i]);
+    EXPECT_GE(p, 6.0 - kOrderBelow);
+    EXPECT_LE(p, 6.0 + kOrderAbove);
+  }
+}
+
+TEST(ShootingConvergence, Rk6MultiLevelSolveMatchesASingleLevelSolve) {
+  // The coarse/middle levels and their Richardson start (exponent 6) change only the start.
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  const Actuation act = Actuation::from_model(m);
+  Options multi = rk6_options(16, 1e-11);
+  multi.coarse_steps = 2;
+  Options single = multi;
+  single.coarse_steps = 0;
+  ShootingSolver a(m, multi), b(m, single);
+  Solution sa, sb;
+  ASSERT_TRUE(a.solve(act, sa).converged());
+  ASSERT_TRUE(b.solve(act, sb).converged());
+  /// Both stop at a scaled residual <= 1e-11; the tip moves by <= 0.08 m per unit residual.
+  constexpr double kTipAgreement_m = 1e-11;
+  EXPECT_LE((sa.tip_state.head<3>() - sb.tip_state.head<3>()).norm(), kTipAgreement_m);
+  const rod::Result res = a.make_result(act, sa, a.solve(act, sa));
+  ASSERT_EQ(res.discretization.size(), 2u);
+  EXPECT_EQ(res.discretization[1].first, "order");
+  EXPECT_EQ(res.discretization[1].second, 6.0);
+}
+
 TEST(ShootingConvergence, CvodeTipErrorScalesWithItsTolerance) {
   const rod::RodModel m = general_3d_rod();
   const Actuation act = Actuation::from_model(m);
@@ -583,6 +639,62 @@ TEST(PaperManipulators, CircularManipulatorConvergesFrom25To150DegCAndRadiusDecr
 
 TEST(PaperManipulators, SquareManipulatorConvergesFrom25To150DegCAndRadiusDecreases) {
   sweep_manipulator(testing::square_manipulator(units::degC_to_K(25.0)));
+}
+
+// --------------------------------------------------------------------------------------
+// Warm starts along a path (Solution::path).
+
+TEST(ShootingPath, SweepWithPathExtrapolationMatchesColdSolvesWithFewerIvps) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
+  const Options o = rk6_options(10, 1e-10);
+  ShootingSolver solver(m, o), cold_solver(m, o);
+  Actuation act = Actuation::from_model(m);
+  Solution with_path, without_path;
+  int ivps_with = 0, ivps_without = 0;
+  for (int t_degC = 25; t_degC <= 150; t_degC += 5) {
+    act.set_temperature_K(0, units::degC_to_K(t_degC));
+    const Summary a = solver.solve(act, with_path);
+    without_path.path.clear();  // a warm start from the last solution only
+    const Summary b = solver.solve(act, without_path);
+    Solution cold;
+    const Summary c = cold_solver.solve(act, cold);
+    ASSERT_TRUE(a.converged() && b.converged() && c.converged()) << t_degC << " degC";
+    if (t_degC > 25) {
+      ivps_with += a.ivp_count;
+      ivps_without += b.ivp_count;
+    }
+    EXPECT_LE(static_cast<int>(with_path.path.size()), ShootingSolver::kPathHistory);
+    /// All three stop at a scaled residual <= 1e-10 (tip within ~1e-11 m of each other).
+    constexpr double kTipAgreement_m = 2e-11;
+    EXPECT_LE((with_path.tip_state.head<3>() - cold.tip_state.head<3>()).norm(), kTipAgreement_m)
+        << t_degC << " degC";
+  }
+  std::printf("[path] 25 warm steps: %d IVPs with the path, %d from the last solution only\n",
+              ivps_with, ivps_without);
+  EXPECT_EQ(static_cast<int>(with_path.path.size()), ShootingSolver::kPathHistory);
+  EXPECT_LT(ivps_with, ivps_without);
+}
+
+TEST(ShootingPath, ColdSolveResetsThePathAndAFailedSolveClearsIt) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
+  Options o = rk6_options(10, 1e-10);
+  ShootingSolver solver(m, o);
+  Actuation act = Actuation::from_model(m);
+  Solution sol;
+  for (int t_degC : {30, 35, 40}) {
+    act.set_temperature_K(0, units::degC_to_K(t_degC));
+    ASSERT_TRUE(solver.solve(act, sol).converged());
+  }
+  EXPECT_EQ(sol.path.size(), 3u);
+  sol.valid = false;  // a cold solve
+  ASSERT_TRUE(solver.solve(act, sol).converged());
+  EXPECT_EQ(sol.path.size(), 1u);
+  o.max_iterations = 1;
+  o.continuation = false;
+  ShootingSolver weak(m, o);
+  act.set_temperature_K(0, units::degC_to_K(150.0));
+  ASSERT_FALSE(weak.solve(act, sol).converged());
+  EXPECT_TRUE(sol.path.empty());
 }
 
 }  // namespace
