@@ -1,13 +1,17 @@
 // Speed of the Cosserat shooting solver (Google Benchmark).
-//  - the paper's circular manipulator at 90 degC: cold solve, and one warm-started step of a
-//    25..150 degC sweep (step 5 degC);
+//  - the paper's circular manipulator at 90 degC: cold solve; the warm-started step from
+//    85 to 90 degC of a 5 degC sweep; the mean warm-started step of a 25..150 degC sweep;
 //  - a 4-tendon steel rod (tensions 15, 0, 0, 0 N, gravity along +x): cold solve.
-// The manipulator benchmarks run with RK4 (lie:0) and with RKMK4 Lie-group kinematics (lie:1).
-// Before the benchmarks, main() prints the tip-position error of the chosen discretization
-// (and of RKMK4 at 2..32 steps) against a tight reference (RK4, 4096 steps).
+// The manipulator benchmarks run with RK4 at 32 steps (scheme:4, lie:0), RKMK4 Lie-group
+// kinematics at 32 steps (scheme:4, lie:1) and RK6 at 10 steps (scheme:6), each at the
+// default tolerance 1e-10 (tol:10) and at 1e-8 (tol:8, for RK6).
+// Before the benchmarks, main() prints the tip-position error of each discretization (and
+// of RKMK4 at 2..32 steps) against a tight reference (RK4, 4096 steps), at 90 degC and the
+// largest over the sweep, including the error of stopping at the tolerance.
 // Run: build/bench/bench_cosserat --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <vector>
@@ -22,6 +26,10 @@ using namespace tcasim;
 
 /// RK4 steps for the manipulator: tip error <= 1e-8 m at 90 degC (printed by main()).
 constexpr int kManipulatorSteps = 32;
+/// RK6 steps for the manipulator (tip error printed by main()).
+constexpr int kManipulatorRk6Steps = 10;
+/// RK6's coarse level (Options::coarse_steps): its sensitivity Jacobians start each warm step.
+constexpr int kManipulatorRk6CoarseSteps = 4;
 /// RK4 steps for the steel rod (tip error printed by main()).
 constexpr int kSteelSteps = 24;
 
@@ -39,13 +47,22 @@ cosserat::Options lie_options(int steps, double tolerance = 1e-10) {
   return options(steps, tolerance, cosserat::Kinematics::kLieGroup);
 }
 
+cosserat::Options rk6_options(double tolerance) {
+  cosserat::Options o = options(kManipulatorRk6Steps, tolerance);
+  o.integrator.method = ode::Method::kRk6;
+  o.coarse_steps = kManipulatorRk6CoarseSteps;
+  return o;
+}
+
 Eigen::Vector3d tip(const rod::RodModel& m, const cosserat::Options& o) {
   cosserat::ShootingSolver solver(m, o);
   const cosserat::Actuation act = cosserat::Actuation::from_model(m);
   cosserat::Solution sol;
   const cosserat::Summary s = solver.solve(act, sol);
   if (!s.converged()) std::printf("  (not converged: %s)\n", s.message.c_str());
-  std::printf("  %s steps %4d: iterations %d, IVPs %d, continuation steps %d\n", o.kinematics == cosserat::Kinematics::kLieGroup ? "RKMK4" : "RK4  ", o.integrator.steps,
+  std::printf("  %s steps %4d: iterations %d, IVPs %d, continuation steps %d\n",
+              o.kinematics == cosserat::Kinematics::kLieGroup ? "RKMK4" : ode::to_string(o.integrator.method),
+              o.integrator.steps,
               s.iterations, s.ivp_count, s.continuation_steps);
   return sol.tip_state.head<3>();
 }
@@ -61,19 +78,31 @@ void print_accuracy(const char* name, const rod::RodModel& m, int steps) {
   }
 }
 
-/// The manipulator's options: RK4 (lie = 0) or RKMK4 (lie = 1) kinematics, same step count
-/// (the tip errors printed by main() are 9.5e-9 and 8.4e-9 m at 32 steps).
-cosserat::Options manipulator_options(std::int64_t lie) {
-  return lie ? lie_options(kManipulatorSteps) : options(kManipulatorSteps);
+/// The manipulator's options for the benchmark arguments (scheme 4 or 6, lie 0 or 1,
+/// tolerance 10^-tol).
+cosserat::Options manipulator_options(std::int64_t scheme, std::int64_t lie, std::int64_t tol) {
+  const double tolerance = std::pow(10.0, -static_cast<double>(tol));
+  if (scheme == 6) return rk6_options(tolerance);
+  return lie ? lie_options(kManipulatorSteps, tolerance) : options(kManipulatorSteps, tolerance);
 }
 
-void BM_CircularManipulatorCold90degC(benchmark::State& state) {
-  const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));
-  cosserat::ShootingSolver solver(m, manipulator_options(state.range(0)));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+cosserat::Options manipulator_options(const benchmark::State& state) {
+  return manipulator_options(state.range(0), state.range(1), state.range(2));
+}
+
+void manipulator_args(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"scheme", "lie", "tol"});
+  b->Args({4, 0, 10})->Args({4, 1, 10})->Args({6, 0, 10})->Args({6, 0, 8});
+  b->Unit(benchmark::kMicrosecond);
+}
+
+/// Times solve(act) from a copy of `start` (an empty Solution: a cold solve; the copy is
+/// inside the timing, about 0.3 us with a path); reports the IVP count of one solve.
+void time_solves(benchmark::State& state, cosserat::ShootingSolver& solver,
+                 const cosserat::Actuation& act, const cosserat::Solution& start) {
   int ivps = 0;
   for (auto _ : state) {
-    cosserat::Solution sol;
+    cosserat::Solution sol = start;
     const cosserat::Summary s = solver.solve(act, sol);
     if (!s.converged()) state.SkipWithError(s.message.c_str());
     ivps = s.ivp_count;
@@ -81,14 +110,42 @@ void BM_CircularManipulatorCold90degC(benchmark::State& state) {
   }
   state.counters["ivps"] = ivps;
 }
-BENCHMARK(BM_CircularManipulatorCold90degC)->Arg(0)->Arg(1)->ArgName("lie")->Unit(benchmark::kMicrosecond);
 
+void BM_CircularManipulatorCold90degC(benchmark::State& state) {
+  const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));
+  cosserat::ShootingSolver solver(m, manipulator_options(state));
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  time_solves(state, solver, act, cosserat::Solution());
+}
+BENCHMARK(BM_CircularManipulatorCold90degC)->Apply(manipulator_args);
+
+/// Sweeps 25 degC (cold) to last_degC in 5 degC warm steps; returns the last solution.
+cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, cosserat::Actuation& act, int last_degC) {
+  cosserat::Solution sol;
+  for (int t = 25; t <= last_degC; t += 5) {
+    act.set_temperature_K(0, units::degC_to_K(t));
+    solver.solve(act, sol);
+  }
+  return sol;
+}
+
+/// One warm step, 85 -> 90 degC, from the sweep's solution at 85 degC (with its path).
+void BM_CircularManipulatorWarmStepTo90degC(benchmark::State& state) {
+  const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
+  cosserat::ShootingSolver solver(m, manipulator_options(state));
+  cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const cosserat::Solution at85 = sweep_to(solver, act, 85);
+  act.set_temperature_K(0, units::degC_to_K(90.0));
+  time_solves(state, solver, act, at85);
+}
+BENCHMARK(BM_CircularManipulatorWarmStepTo90degC)->Apply(manipulator_args);
+
+/// The mean warm step of the 30..150 degC sweep (25 steps) from the cold point at 25 degC.
 void BM_CircularManipulatorWarmSweepStep(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
-  cosserat::ShootingSolver solver(m, manipulator_options(state.range(0)));
+  cosserat::ShootingSolver solver(m, manipulator_options(state));
   cosserat::Actuation act = cosserat::Actuation::from_model(m);
-  cosserat::Solution start;
-  solver.solve(act, start);  // the cold point at 25 degC, outside the timing
+  const cosserat::Solution start = sweep_to(solver, act, 25);  // outside the timing
   int steps = 0;
   long ivps = 0;
   for (auto _ : state) {
@@ -105,29 +162,56 @@ void BM_CircularManipulatorWarmSweepStep(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["ivps_per_step"] = static_cast<double>(ivps) / steps;
 }
-BENCHMARK(BM_CircularManipulatorWarmSweepStep)->Arg(0)->Arg(1)->ArgName("lie")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CircularManipulatorWarmSweepStep)->Apply(manipulator_args);
 
 void BM_SteelTendonRodCold(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::steel_tendon_rod();
   cosserat::ShootingSolver solver(m, options(kSteelSteps));
   const cosserat::Actuation act = cosserat::Actuation::from_model(m);
-  int ivps = 0;
-  for (auto _ : state) {
-    cosserat::Solution sol;
-    const cosserat::Summary s = solver.solve(act, sol);
-    if (!s.converged()) state.SkipWithError(s.message.c_str());
-    ivps = s.ivp_count;
-    benchmark::DoNotOptimize(sol.unknowns.data());
-  }
-  state.counters["ivps"] = ivps;
+  time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_SteelTendonRodCold)->Unit(benchmark::kMicrosecond);
+
+/// Largest tip error of a warm-started 25..150 degC sweep with `o` against RK4 at 4096 steps.
+void print_sweep_accuracy(const char* name, const cosserat::Options& o) {
+  const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
+  cosserat::ShootingSolver solver(m, o), reference(m, options(4096, 1e-12));
+  cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  cosserat::Solution sol, ref;
+  double worst = 0.0, at90 = 0.0;
+  int worst_degC = 25;
+  for (int t = 25; t <= 150; t += 5) {
+    act.set_temperature_K(0, units::degC_to_K(t));
+    const cosserat::Summary s = solver.solve(act, sol);
+    const cosserat::Summary r = reference.solve(act, ref);
+    if (!s.converged() || !r.converged()) std::printf("  (not converged at %d degC)\n", t);
+    const double e = (sol.tip_state.head<3>() - ref.tip_state.head<3>()).norm();
+    if (e > worst) { worst = e; worst_degC = t; }
+    if (t == 90) at90 = e;
+  }
+  std::printf("  %-26s sweep tip error: %.2e m at 90 degC, largest %.2e m at %d degC\n", name, at90,
+              worst, worst_degC);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   print_accuracy("circular manipulator, 90 degC",
                  cosserat::testing::circular_manipulator(units::degC_to_K(90.0)), kManipulatorSteps);
+  std::printf("circular manipulator, RK6 at %d steps, 90 degC\n", kManipulatorRk6Steps);
+  {
+    const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));
+    const Eigen::Vector3d ref = tip(m, options(4096, 1e-12));
+    for (double tol : {1e-10, 1e-8}) {
+      std::printf("  tip error at tolerance %.0e vs RK4 4096 steps: %.3e m\n", tol,
+                  (tip(m, rk6_options(tol)) - ref).norm());
+    }
+  }
+  std::printf("circular manipulator, warm-started sweeps 25..150 degC (5 degC steps)\n");
+  print_sweep_accuracy("RK4 32 steps, tol 1e-10", manipulator_options(4, 0, 10));
+  print_sweep_accuracy("RKMK4 32 steps, tol 1e-10", manipulator_options(4, 1, 10));
+  print_sweep_accuracy("RK6 10 steps, tol 1e-10", manipulator_options(6, 0, 10));
+  print_sweep_accuracy("RK6 10 steps, tol 1e-8", manipulator_options(6, 0, 8));
   print_accuracy("steel 4-tendon rod", cosserat::testing::steel_tendon_rod(), kSteelSteps);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

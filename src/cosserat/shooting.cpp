@@ -1172,6 +1172,7 @@ struct ShootingSolver::Impl {
     Summary summary;
     ivp_count = 0;
     acc_full_load = false;
+    coarse_jacobian_x.resize(0);  // a solve never depends on where an earlier one took Jacobians
     require(static_cast<int>(act.actuators.size()) == n_act, "actuation.actuators",
             static_cast<double>(act.actuators.size()),
             "must have one entry per model actuator (" + std::to_string(n_act) + ")");
