@@ -467,6 +467,7 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
       st.unknowns += d.du_dq * dq;
       st.coarse_unknowns.resize(0);
       st.jacobian = d.B_u;  // fresh at the old point: Newton starts without recomputing it
+      st.path.clear();      // this first-order start, not an extrapolation along past trials
       ++res.forward_solves;
       const Summary ss = solver.solve(at, st);
       const double predicted = err * err - (e - A * dq).squaredNorm();

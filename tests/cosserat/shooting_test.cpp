@@ -394,15 +394,9 @@ TEST(ShootingConvergence, Rk6TipErrorHasObservedOrderSixWithGravity) {
     e.push_back((tip(rk6_options(n, 1e-13)) - ref).norm());
   }
   std::printf("%s", test_support::convergence_table(h, e).c_str());
-  /// Order 6; the O(h^7) term may raise the observed order at these levels (as in the
-  /// integrator's own tests), never to the next even order 8.
-  constexpr double kOrderBelow = 0.3;
-  constexpr double kOrderAbove = 0.9;
-  for (std::size_t i = 1; i < h.size(); ++i) {
-    const double p = std::log(e[i - 1] / e[i]) / std::log(h[i - 1] / h[i]);
-    EXPECT_GE(p, 6.0 - kOrderBelow);
-    EXPECT_LE(p, 6.0 + kOrderAbove);
-  }
+  /// Bracket around the theoretical order 6 (observed 5.94 and 5.96).
+  constexpr double kOrderTolerance = 0.15;
+  test_support::ExpectOrderInBracket(h, e, 6.0, kOrderTolerance);
 }
 
 TEST(ShootingConvergence, Rk6MultiLevelSolveMatchesASingleLevelSolve) {
