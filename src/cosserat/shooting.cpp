@@ -1110,6 +1110,11 @@ struct ShootingSolver::Impl {
       return;
     }
     if (!warm) sol.path.clear();
+    if (!sol.path.empty() && sol.path.back().actuation.size() == a.size() &&
+        sol.path.back().actuation == a) {
+      sol.path.back().unknowns = sol.unknowns;  // the same point again: no duplicate node
+      return;
+    }
     sol.path.push_back({std::move(a), sol.unknowns});
     if (static_cast<int>(sol.path.size()) > ShootingSolver::kPathHistory) sol.path.erase(sol.path.begin());
   }

@@ -680,6 +680,8 @@ TEST(ShootingPath, ColdSolveResetsThePathAndAFailedSolveClearsIt) {
     ASSERT_TRUE(solver.solve(act, sol).converged());
   }
   EXPECT_EQ(sol.path.size(), 3u);
+  ASSERT_TRUE(solver.solve(act, sol).converged());  // the same actuation again
+  EXPECT_EQ(sol.path.size(), 3u);
   sol.valid = false;  // a cold solve
   ASSERT_TRUE(solver.solve(act, sol).converged());
   EXPECT_EQ(sol.path.size(), 1u);
