@@ -352,16 +352,18 @@ rod::RodModel general_3d_rod() {
   return m;
 }
 
+/// Tip position of the model's own actuation solved with `o` (expects convergence).
+Vector3d converged_tip(const rod::RodModel& m, const Options& o) {
+  ShootingSolver solver(m, o);
+  Solution sol;
+  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  EXPECT_TRUE(s.converged()) << s.message;
+  return Vector3d(sol.tip_state.head<3>());
+}
+
 TEST(ShootingConvergence, Rk4TipErrorHasObservedOrderFourWithGravity) {
   const rod::RodModel m = general_3d_rod();
-  const Actuation act = Actuation::from_model(m);
-  auto tip = [&](const Options& o) {
-    ShootingSolver solver(m, o);
-    Solution sol;
-    const Summary s = solver.solve(act, sol);
-    EXPECT_TRUE(s.converged()) << s.message;
-    return Vector3d(sol.tip_state.head<3>());
-  };
+  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
   const Vector3d ref = tip(rk4_options(2048, 1e-13));
   std::vector<double> h, e;
   // From 32 steps (h = 1.25 mm, curvature x h <~ 0.05): coarser levels are pre-asymptotic
@@ -378,14 +380,7 @@ TEST(ShootingConvergence, Rk4TipErrorHasObservedOrderFourWithGravity) {
 
 TEST(ShootingConvergence, Rk6TipErrorHasObservedOrderSixWithGravity) {
   const rod::RodModel m = general_3d_rod();
-  const Actuation act = Actuation::from_model(m);
-  auto tip = [&](const Options& o) {
-    ShootingSolver solver(m, o);
-    Solution sol;
-    const Summary s = solver.solve(act, sol);
-    EXPECT_TRUE(s.converged()) << s.message;
-    return Vector3d(sol.tip_state.head<3>());
-  };
+  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
   const Vector3d ref = tip(rk4_options(4096, 1e-13));  // error ~1e-15 m
   std::vector<double> h, e;
   // Errors from ~1e-9 m down to ~3e-13 m, above the reference's and the solve's round-off.
@@ -422,14 +417,7 @@ TEST(ShootingConvergence, Rk6MultiLevelSolveMatchesASingleLevelSolve) {
 
 TEST(ShootingConvergence, CvodeTipErrorScalesWithItsTolerance) {
   const rod::RodModel m = general_3d_rod();
-  const Actuation act = Actuation::from_model(m);
-  auto tip = [&](const Options& o) {
-    ShootingSolver solver(m, o);
-    Solution sol;
-    const Summary s = solver.solve(act, sol);
-    EXPECT_TRUE(s.converged()) << s.message;
-    return Vector3d(sol.tip_state.head<3>());
-  };
+  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
   const Vector3d ref = tip(rk4_options(2048, 1e-13));
   std::vector<double> tol, e;
   for (double rtol : {1e-5, 1e-7, 1e-9}) {
