@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -45,6 +46,15 @@ constexpr int kMaxSensitivityUnknowns = 16;
 /// Scaled residual to which the coarse level is converged: coarse IVPs are cheap, and the
 /// coarse-grid correction of a warm start is only as accurate as the coarse solutions.
 constexpr double kCoarseTolerance = 1e-9;
+/// A cold start hands the coarse (or middle) level's Jacobian to the next level only if it
+/// was Broyden-updated at most this many times since it was computed.
+constexpr int kMaxHandedOverUpdates = 1;
+/// Initial guess with gravity: nodes of the load-strain quadrature, fixed-point
+/// iterations, and the convergence test on the change of the mean strains (relative to
+/// 1/L + their size).
+constexpr int kGuessNodes = 8;
+constexpr int kGuessIterations = 12;
+constexpr double kGuessTolerance = 1e-3;
 /// Path extrapolation (ShootingSolver::kPathHistory): relative distance from the line below
 /// which an earlier actuation counts as on it, and the smallest spacing of the path's
 /// parameters in units of the new step.
@@ -308,6 +318,7 @@ struct ShootingSolver::Impl {
   std::vector<double> acc_cT;
   std::vector<double> acc_dF;  // dF/d delta at the accepted point (under its actuation)
   Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
+  int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
   Vec3 acc_f_ext = Vec3::Zero();
   const ode::Integrator* acc_level = nullptr;
   std::vector<std::vector<tca::Segment>> scaled_segments;
@@ -793,91 +804,170 @@ struct ShootingSolver::Impl {
     omega = omega_star + Vec3(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
   }
 
-  /// Initial guess: the closed-form constant-strain rod (docs/conventions.md) of the known
-  /// tensions and of the TCA tensions solving T_k = F_tca(delta_k(T)) with the closed-form
-  /// elongations (a small Newton iteration; gravity and tip loads are ignored). Falls back
-  /// to T_tca = 0 if that iteration fails.
-  Eigen::VectorXd straight_guess(const Actuation& act, double lambda) {
+  /// Pose at arc length s of a rod with constant strains (nu, omega) from the base pose:
+  /// R = R0 exp(s hat(omega)), p = p0 + R0 V nu with V = int_0^s exp(t hat(omega)) dt.
+  void arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R, Vec3& p) const {
+    const Vec3 a = s * omega;
+    const double th = a.norm();
+    const Mat3 A = hat(a), A2 = A * A;
+    double c1, c2, c3;  // sin(th)/th, (1 - cos th)/th^2, (th - sin th)/th^3
+    if (th < 1e-4) {
+      c1 = 1.0 - th * th / 6.0;
+      c2 = 0.5 - th * th / 24.0;
+      c3 = 1.0 / 6.0 - th * th / 120.0;
+    } else {
+      c1 = std::sin(th) / th;
+      c2 = (1.0 - std::cos(th)) / (th * th);
+      c3 = (th - std::sin(th)) / (th * th * th);
+    }
+    R = model.R_WB0 * (Mat3::Identity() + c1 * A + c2 * A2);
+    p = model.base_position_W_m + model.R_WB0 * (s * (nu + c2 * (A * nu) + c3 * (A2 * nu)));
+  }
+
+  /// Strains the distributed load f_ext_W (gravity) adds to a rod bent with constant strains
+  /// (nu, omega): K^-1 R(s)^T times the internal force and moment the load beyond s requires
+  /// (docs/conventions.md "Global equilibrium"), on kGuessNodes + 1 nodes; returns their mean
+  /// over s and their value at s = 0.
+  void load_strains(const Vec3& nu, const Vec3& omega, Vec6& mean, Vec6& base) const {
+    constexpr int N = kGuessNodes;
+    std::array<Mat3, N + 1> R;
+    std::array<Vec3, N + 1> p;
+    for (int k = 0; k <= N; ++k) arc_pose(nu, omega, L * k / N, R[k], p[k]);
+    const double h = L / N;
+    mean.setZero();
+    Vec3 c_tail = Vec3::Zero();  // int_s^L p, trapezoidal rule, accumulated from the tip
+    for (int k = N; k >= 0; --k) {
+      if (k < N) c_tail += 0.5 * h * (p[k] + p[k + 1]);
+      const double tail = L - k * h;
+      const Vec3 n = tail * f_ext_W;
+      const Vec3 m = (c_tail - tail * p[k]).cross(f_ext_W);
+      Vec6 d;
+      d << K_nu_inv.cwiseProduct(R[k].transpose() * n), K_omega_inv.cwiseProduct(R[k].transpose() * m);
+      mean += (k == 0 || k == N ? 0.5 : 1.0) / N * d;
+      if (k == 0) base = d;
+    }
+  }
+
+  /// Initial guess (docs/conventions.md "Initial guess"): the closed-form constant-strain rod
+  /// of the known tensions and of the TCA tensions solving T_k = F_tca(delta_k(T)) with the
+  /// closed-form elongations (a small Newton iteration; T_tca = 0 if it fails), plus, if
+  /// `with_gravity`, the strains of gravity on that bent rod: a fixed-point iteration bends
+  /// the arc by their mean and the unknowns take their value at the base. Without a converged
+  /// fixed point gravity is ignored; *used_gravity tells whether it was included. Tip loads
+  /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria).
+  Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
+                                 bool* used_gravity = nullptr) {
+    if (used_gravity) *used_gravity = false;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
     set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
     std::vector<double> cTs = cT;
     Vec3 nu, omega;
-    if (n_tca > 0) {
-      Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
-      Eigen::MatrixXd G(n_tca, n_tca);
-      std::vector<int> act_of(n_tca);
-      for (int i = 0; i < n_act; ++i) {
-        if (unknown_of[i] >= 0) act_of[unknown_of[i] - 6] = i;
-      }
-      // Residuals g_k = T_k - F_k(delta_k(T)) of the closed-form model; F may throw.
-      auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
-        for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
+    if (with_gravity && !f_ext_W.isZero(0.0)) {
+      Vec6 mean = Vec6::Zero();
+      for (int it = 0; it < kGuessIterations; ++it) {
+        guess_tensions(mean, cTs, x);
         closed_form_strains(cTs, nu, omega);
-        for (int k = 0; k < n_tca; ++k) {
-          const int i = act_of[k];
-          const rod::Routing& ro = model.actuators[i].routing;
-          const double delta =
-              L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
-          const tca::Tca& tca = *model.actuators[i].drive.tca;
-          const auto& segs = scaled_segments[i];
-          double F = 0.0, dF = 0.0;
-          if (segs.size() == 1) {
-            const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
-            F = ts.tension_N;
-            dF = ts.dF_ddelta_N_m;
-          } else {
-            const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
-            F = ts.tension_N;
-            dF = ts.dF_ddelta_N_m;
-          }
-          gk[k] = Tk[k] - F;
-          if (Gk) {
-            const Vec3 ri = ro.r(0.0);
-            for (int l = 0; l < n_tca; ++l) {
-              const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
-              // d delta_k / d T_l = -L C_kl c_l (closed form)
-              const double C = 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
-                               ri.x() * rl.x() / K_omega.y();
-              (*Gk)(k, l) = (k == l ? 1.0 : 0.0) + dF * L * C * count[act_of[l]];
-            }
-          }
+        Vec6 next_mean, base;
+        load_strains(nu + mean.head<3>(), omega + mean.tail<3>(), next_mean, base);
+        if (!next_mean.allFinite() || !base.allFinite()) break;
+        const double change = (next_mean - mean).lpNorm<Eigen::Infinity>();
+        mean = next_mean;
+        if (change <= kGuessTolerance * (1.0 / L + mean.lpNorm<Eigen::Infinity>())) {
+          guess_tensions(mean, cTs, x);
+          closed_form_strains(cTs, nu, omega);
+          x.head<3>() = nu + base.head<3>();
+          x.segment<3>(3) = omega + base.tail<3>();
+          if (used_gravity) *used_gravity = true;
+          return x;
         }
-        return gk.allFinite();
-      };
-      bool ok = false;
-      try {
-        ok = eval(T, g, &G);
-        for (int it = 0; ok && it < 30 && g.lpNorm<Eigen::Infinity>() > 1e-12 * Fc; ++it) {
-          dT = G.partialPivLu().solve(-g);
-          double t = 1.0;
-          Eigen::VectorXd Tt(n_tca), gt(n_tca);
-          bool accepted = false;
-          for (int ls = 0; ls < 30 && !accepted; ++ls, t *= 0.5) {
-            Tt = T + t * dT;
-            try {
-              accepted = eval(Tt, gt, nullptr) && gt.squaredNorm() < g.squaredNorm();
-            } catch (const DomainError&) {
-              accepted = false;
-            }
-          }
-          if (!accepted) break;
-          T = Tt;
-          ok = eval(T, g, &G);
-        }
-      } catch (const DomainError&) {
-        ok = false;
       }
-      if (ok && T.allFinite()) {
-        x.segment(6, n_tca) = T;
-      } else {
-        x.segment(6, n_tca).setZero();
-      }
-      for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * x[6 + k];
     }
+    guess_tensions(Vec6::Zero(), cTs, x);  // without gravity (none, or no fixed point)
     closed_form_strains(cTs, nu, omega);
     x.head<3>() = nu;
     x.segment<3>(3) = omega;
     return x;
+  }
+
+  /// TCA tensions of the guess: T_k = F_tca(delta_k(T)) with delta_k of the closed-form
+  /// strains plus `extra` (the mean load strains), by a small damped Newton iteration
+  /// (dT/d delta from the closed form); sets x's TCA entries (0 if it fails) and their
+  /// c T in cTs (known tensions as set by set_parameters).
+  void guess_tensions(const Vec6& extra, std::vector<double>& cTs, Eigen::VectorXd& x) {
+    if (n_tca == 0) return;
+    Vec3 nu, omega;
+    Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
+    Eigen::MatrixXd G(n_tca, n_tca);
+    std::vector<int> act_of(n_tca);
+    for (int i = 0; i < n_act; ++i) {
+      if (unknown_of[i] >= 0) act_of[unknown_of[i] - 6] = i;
+    }
+    // Residuals g_k = T_k - F_k(delta_k(T)) of the closed-form model; F may throw.
+    auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
+      for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
+      closed_form_strains(cTs, nu, omega);
+      nu += extra.head<3>();
+      omega += extra.tail<3>();
+      for (int k = 0; k < n_tca; ++k) {
+        const int i = act_of[k];
+        const rod::Routing& ro = model.actuators[i].routing;
+        const double delta =
+            L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
+        const tca::Tca& tca = *model.actuators[i].drive.tca;
+        const auto& segs = scaled_segments[i];
+        double F = 0.0, dF = 0.0;
+        if (segs.size() == 1) {
+          const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
+          F = ts.tension_N;
+          dF = ts.dF_ddelta_N_m;
+        } else {
+          const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
+          F = ts.tension_N;
+          dF = ts.dF_ddelta_N_m;
+        }
+        gk[k] = Tk[k] - F;
+        if (Gk) {
+          const Vec3 ri = ro.r(0.0);
+          for (int l = 0; l < n_tca; ++l) {
+            const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
+            // d delta_k / d T_l = -L C_kl c_l (closed form)
+            const double C = 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
+                             ri.x() * rl.x() / K_omega.y();
+            (*Gk)(k, l) = (k == l ? 1.0 : 0.0) + dF * L * C * count[act_of[l]];
+          }
+        }
+      }
+      return gk.allFinite();
+    };
+    bool ok = false;
+    try {
+      ok = eval(T, g, &G);
+      for (int it = 0; ok && it < 30 && g.lpNorm<Eigen::Infinity>() > 1e-12 * Fc; ++it) {
+        dT = G.partialPivLu().solve(-g);
+        double t = 1.0;
+        Eigen::VectorXd Tt(n_tca), gt(n_tca);
+        bool accepted = false;
+        for (int ls = 0; ls < 30 && !accepted; ++ls, t *= 0.5) {
+          Tt = T + t * dT;
+          try {
+            accepted = eval(Tt, gt, nullptr) && gt.squaredNorm() < g.squaredNorm();
+          } catch (const DomainError&) {
+            accepted = false;
+          }
+        }
+        if (!accepted) break;
+        T = Tt;
+        ok = eval(T, g, &G);
+      }
+    } catch (const DomainError&) {
+      ok = false;
+    }
+    if (ok && T.allFinite()) {
+      x.segment(6, n_tca) = T;
+    } else {
+      x.segment(6, n_tca).setZero();
+    }
+    for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * x[6 + k];
   }
 
   /// Damped Newton at load fraction lambda: the Jacobian (sensitivities or differences) is
@@ -917,6 +1007,7 @@ struct ShootingSolver::Impl {
           return Summary::Status::kLineSearchFailed;
         }
         fresh = !approximate;  // a coarse-level Jacobian is treated like a stale one
+        jacobian_updates = 0;
       }
       dx = J.partialPivLu().solve(-r);
       if (!dx.allFinite()) {
@@ -954,6 +1045,7 @@ struct ShootingSolver::Impl {
         const double ss = s.squaredNorm();
         if (ss > 0.0) J.noalias() += ((rt - r) - J * s) * (s.transpose() / ss);
         fresh = false;
+        ++jacobian_updates;
       } else {
         J.resize(0, 0);
       }
@@ -1005,7 +1097,7 @@ struct ShootingSolver::Impl {
     const double b = std::pow(2.0 * options.coarse_steps, -p);
     const double c = std::pow(static_cast<double>(options.integrator.steps), -p);
     x = xm + ((c - b) / (b - a)) * (xm - xc);
-    J = Jm;
+    J = jacobian_updates <= kMaxHandedOverUpdates ? Jm : Eigen::MatrixXd();
   }
 
   /// Selects the middle level (2 x coarse_steps); use_level(false) returns to the fine one.
@@ -1172,6 +1264,53 @@ struct ShootingSolver::Impl {
     if (!summary.moment_imbalance_W_Nm.allFinite()) summary.moment_imbalance_W_Nm.setZero();
   }
 
+  /// Direct solve at full load from x (warm: the previous solution, J its Jacobian; cold: the
+  /// guess, J empty) with the two-level start (Options::coarse_steps); on return x and J are
+  /// the last accepted point and its Jacobian, and sol's coarse fields are set.
+  Summary::Status direct_solve(const Actuation& act, Solution& sol, bool warm, Eigen::VectorXd& x,
+                               Eigen::MatrixXd& J, Summary& summary, std::string& why) {
+    // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
+    // (cheap IVPs); its solution is within the coarse discretization error of the fine one.
+    // Warm: coarse-grid correction x = x_fine,old + (x_coarse,new - x_coarse,old), whose
+    // error is the change of the discretization error between the two actuations.
+    Eigen::VectorXd coarse_x;
+    Eigen::MatrixXd coarse_J;
+    if (coarse_integrator) {
+      const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
+                               sol.coarse_unknowns.allFinite();
+      // A warm start with a Jacobian goes straight to the fine level: its first residual is
+      // usually free (IVP memo), and the Broyden-updated Jacobian saves the coarse solve.
+      const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
+      if ((!warm || warm_coarse) && !warm_fine) {
+        Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
+        Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
+                                                                       : Eigen::MatrixXd();
+        std::string coarse_why;
+        use_level(true);
+        const Summary::Status sc =
+            newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
+        use_level(false);
+        if (sc == Summary::Status::kConverged) {
+          if (warm) {
+            x += xc - sol.coarse_unknowns;
+          } else {
+            x = xc;
+            // A Jacobian updated more than once since it was computed has drifted far from
+            // the one at xc: the fine level then starts with a fresh (coarse-level) one.
+            if (jacobian_updates <= kMaxHandedOverUpdates) J = Jc;
+            if (mid_integrator) cold_extrapolation(act, xc, Jc, x, J, summary);
+          }
+          coarse_x = xc;
+          coarse_J = Jc;
+        }
+      }
+    }
+    sol.coarse_unknowns = coarse_x;
+    sol.coarse_jacobian = coarse_J;
+    if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
+    return newton(act, 1.0, x, J, summary, why, options.tolerance);
+  }
+
   Summary solve(const Actuation& act, Solution& sol) {
     const auto t0 = std::chrono::steady_clock::now();
     Summary summary;
@@ -1217,46 +1356,19 @@ struct ShootingSolver::Impl {
         return done(Summary::Status::kConverged, "", xp);
       }
     }
-    Eigen::VectorXd x = warm ? sol.unknowns : straight_guess(act, 1.0);
+    bool loaded_guess = false;
+    Eigen::VectorXd x = warm ? sol.unknowns : initial_guess(act, 1.0, true, &loaded_guess);
     Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
-    // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
-    // (cheap IVPs); its solution is within the coarse discretization error of the fine one.
-    // Warm: coarse-grid correction x = x_fine,old + (x_coarse,new - x_coarse,old), whose
-    // error is the change of the discretization error between the two actuations.
-    Eigen::VectorXd coarse_x;
-    Eigen::MatrixXd coarse_J;
-    if (coarse_integrator) {
-      const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
-                               sol.coarse_unknowns.allFinite();
-      // A warm start with a Jacobian goes straight to the fine level: its first residual is
-      // usually free (IVP memo), and the Broyden-updated Jacobian saves the coarse solve.
-      const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
-      if ((!warm || warm_coarse) && !warm_fine) {
-        Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
-        Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
-                                                                       : Eigen::MatrixXd();
-        std::string coarse_why;
-        use_level(true);
-        const Summary::Status sc =
-            newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
-        use_level(false);
-        if (sc == Summary::Status::kConverged) {
-          if (warm) {
-            x += xc - sol.coarse_unknowns;
-          } else {
-            x = xc;
-            J = Jc;
-            if (mid_integrator) cold_extrapolation(act, xc, Jc, x, J, summary);
-          }
-          coarse_x = xc;
-          coarse_J = Jc;
-        }
-      }
+    Summary::Status st = direct_solve(act, sol, warm, x, J, summary, why);
+    if (st != Summary::Status::kConverged && loaded_guess) {
+      // Strong gravity can bend the guess toward another equilibrium or out of Newton's
+      // reach: retry from the guess without it before continuation.
+      x = initial_guess(act, 1.0, false);
+      J.resize(0, 0);
+      std::string retry_why;
+      st = direct_solve(act, sol, false, x, J, summary, retry_why);
+      why = "from the guess with gravity: " + why + "; without: " + retry_why;
     }
-    sol.coarse_unknowns = coarse_x;
-    sol.coarse_jacobian = coarse_J;
-    if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
-    Summary::Status st = newton(act, 1.0, x, J, summary, why, options.tolerance);
     if (st == Summary::Status::kConverged || !options.continuation) {
       sol.jacobian = J;
       return done(st, why, x);
@@ -1267,7 +1379,7 @@ struct ShootingSolver::Impl {
     sol.coarse_jacobian.resize(0, 0);
     const std::string direct_why = why;
     double lambda = 0.0;
-    Eigen::VectorXd xc = straight_guess(act, 0.0);
+    Eigen::VectorXd xc = initial_guess(act, 0.0, false);
     Eigen::MatrixXd Jc;
     st = newton(act, 0.0, xc, Jc, summary, why, options.tolerance);
     if (st != Summary::Status::kConverged) {
@@ -1397,6 +1509,10 @@ Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
 rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
                                         const Summary& summary) {
   return impl_->make_result(actuation, solution, summary);
+}
+
+Eigen::VectorXd ShootingSolver::initial_guess(const Actuation& actuation) {
+  return impl_->initial_guess(actuation, 1.0, true);
 }
 
 bool ShootingSolver::residual(const Actuation& actuation, const Eigen::VectorXd& x,

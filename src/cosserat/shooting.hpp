@@ -164,7 +164,7 @@ const char* to_string(Summary::Status s);
 
 /// A solution (or a starting guess): unknowns and what warm starts reuse.
 struct Solution {
-  bool valid = false;          ///< false: solve starts from the straight guess
+  bool valid = false;          ///< false: solve starts from the initial guess (a cold solve)
   Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca..., tip reaction)
   Eigen::MatrixXd jacobian;    ///< d r_scaled / d x at (or near) `unknowns`; may be empty
   Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP
@@ -206,8 +206,8 @@ class ShootingSolver {
   /// then each segment's fraction and temperature; tip force, tip moment, gravity), lies on
   /// the straight line through the last points of `solution.path`, from the polynomial
   /// extrapolation of the unknowns along it with a fresh coarse-level Jacobian, falling back
-  /// to the last solution if that start does not converge); else from the straight guess (nu = nu* with the closed-form
-  /// axial strain and curvature of the known tensions, omega = omega* + that, T_tca = 0).
+  /// to the last solution if that start does not converge); else from initial_guess(), and
+  /// if that start fails with gravity in the guess, from the guess without it.
   /// If that fails and Options::continuation, it steps the load fraction lambda from 0 to 1
   /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))
   /// warm-starting each step, doubling the step after a success and halving it after a
@@ -218,6 +218,13 @@ class ShootingSolver {
   /// actuators, centerline samples, bending radius, summary fields, discretization).
   rod::Result make_result(const Actuation& actuation, const Solution& solution,
                           const Summary& summary);
+
+  /// The unknowns a cold solve starts from (docs/conventions.md "Initial guess"): the
+  /// closed-form constant strains of the tensions, with the TCA tensions consistent with
+  /// their closed-form elongations, bent further by gravity (a fixed point on a
+  /// constant-strain arc; ignored if that does not converge); tip loads and reactions are
+  /// not included (reactions 0).
+  Eigen::VectorXd initial_guess(const Actuation& actuation);
 
   /// Scaled residual at x (for tests); returns false if the IVP or a TCA law failed.
   bool residual(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::VectorXd& r);
