@@ -298,6 +298,7 @@ struct ShootingSolver::Impl {
   Vec3 K_nu, K_omega, nu_star, omega_star;
   Vec3 K_nu_inv, K_omega_inv;  // reciprocals for StringSystem
   std::vector<int> unknown_of;   // actuator -> unknown index (-1 for tension drives)
+  std::vector<int> act_of;       // TCA unknown k (x[6 + k]) -> actuator
   std::vector<double> length_ratio;
   std::vector<double> count;
   std::vector<bool> straight;
@@ -340,7 +341,10 @@ struct ShootingSolver::Impl {
     unknown_of.assign(n_act, -1);
     for (int i = 0; i < n_act; ++i) {
       const rod::Actuator& a = model.actuators[i];
-      if (a.drive.type == rod::Drive::Type::kTca) unknown_of[i] = 6 + n_tca++;
+      if (a.drive.type == rod::Drive::Type::kTca) {
+        unknown_of[i] = 6 + n_tca++;
+        act_of.push_back(i);
+      }
       length_ratio.push_back(a.rest_length_m / L);
       count.push_back(static_cast<double>(a.count));
       straight.push_back(a.routing.type == rod::Routing::Type::kStraight);
@@ -898,10 +902,6 @@ struct ShootingSolver::Impl {
     Vec3 nu, omega;
     Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
     Eigen::MatrixXd G(n_tca, n_tca);
-    std::vector<int> act_of(n_tca);
-    for (int i = 0; i < n_act; ++i) {
-      if (unknown_of[i] >= 0) act_of[unknown_of[i] - 6] = i;
-    }
     // Residuals g_k = T_k - F_k(delta_k(T)) of the closed-form model; F may throw.
     auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
       for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
@@ -913,18 +913,9 @@ struct ShootingSolver::Impl {
         const rod::Routing& ro = model.actuators[i].routing;
         const double delta =
             L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
-        const tca::Tca& tca = *model.actuators[i].drive.tca;
-        const auto& segs = scaled_segments[i];
-        double F = 0.0, dF = 0.0;
-        if (segs.size() == 1) {
-          const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
-          F = ts.tension_N;
-          dF = ts.dF_ddelta_N_m;
-        } else {
-          const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
-          F = ts.tension_N;
-          dF = ts.dF_ddelta_N_m;
-        }
+        double dF = 0.0;
+        const double F =
+            tca_force(*model.actuators[i].drive.tca, delta, scaled_segments[i], nullptr, &dF);
         gk[k] = Tk[k] - F;
         if (Gk) {
           const Vec3 ri = ro.r(0.0);
