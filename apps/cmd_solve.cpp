@@ -36,8 +36,9 @@ void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
   auto* steps = cmd->add_option("--steps", f.steps,
                                 "cosserat: fixed steps of --scheme (even, >= 2; default 100)");
   auto* scheme = cmd->add_option("--scheme", f.scheme,
-                                 "cosserat: fixed-step scheme, rk4 (default, the paper's) or rk6 "
-                                 "(sixth order: far fewer steps for the same error)");
+                                 "cosserat: fixed-step scheme, rk4 (default, the paper's), rk6 or "
+                                 "rk8 (sixth and eighth order: far fewer steps for the same "
+                                 "error)");
   auto* rtol = cmd->add_option("--rtol", f.rtol,
                                "cosserat: use SUNDIALS CVODE with this relative tolerance");
   steps->excludes(rtol);
@@ -46,8 +47,11 @@ void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
 
 cosserat::Options cosserat_options(const IntegratorFlags& f) {
   cosserat::Options o;
-  require(f.scheme == "rk4" || f.scheme == "rk6", "--scheme", f.scheme, "must be rk4 or rk6");
-  o.integrator.method = f.scheme == "rk6" ? ode::Method::kRk6 : ode::Method::kRk4;
+  require(f.scheme == "rk4" || f.scheme == "rk6" || f.scheme == "rk8", "--scheme", f.scheme,
+          "must be rk4, rk6 or rk8");
+  o.integrator.method = f.scheme == "rk8"   ? ode::Method::kRk8
+                        : f.scheme == "rk6" ? ode::Method::kRk6
+                                            : ode::Method::kRk4;
   if (f.rtol != 0.0) {
     require(f.rtol > 0.0 && f.rtol < 1.0, "--rtol", f.rtol, "must be in (0, 1)");
     o.integrator.method = ode::Method::kCvode;
@@ -57,6 +61,9 @@ cosserat::Options cosserat_options(const IntegratorFlags& f) {
     require(f.steps >= 2 && f.steps % 2 == 0, "--steps", f.steps, "must be an even number >= 2");
     o.integrator.steps = f.steps;
   }
+  // RK8's coarse level: 2 steps are about as accurate as RK6's 4 (its Jacobians start the
+  // warm steps of sweeps).
+  if (o.integrator.method == ode::Method::kRk8) o.coarse_steps = 2;
   return o;
 }
 

@@ -3,8 +3,9 @@
 //    85 to 90 degC of a 5 degC sweep; the mean warm-started step of a 25..150 degC sweep;
 //  - a 4-tendon steel rod (tensions 15, 0, 0, 0 N, gravity along +x): cold solve.
 // The manipulator benchmarks run with RK4 at 32 steps (scheme:4, lie:0), RKMK4 Lie-group
-// kinematics at 32 steps (scheme:4, lie:1) and RK6 at 10 steps (scheme:6), each at the
-// default tolerance 1e-10 (tol:10) and at 1e-8 (tol:8, for RK6).
+// kinematics at 32 steps (scheme:4, lie:1), RK6 at 10 steps (scheme:6) and RK8 at 4 steps
+// (scheme:8, coarse level 2 steps), each at the default tolerance 1e-10 (tol:10) and at
+// 1e-8 (tol:8, for RK6). The steel rod runs with RK4 at 24 steps and RK8 at 2 steps.
 // Before the benchmarks, main() prints the tip-position error of each discretization (and
 // of RKMK4 at 2..32 steps) against a tight reference (RK4, 4096 steps), at 90 degC and the
 // largest over the sweep, including the error of stopping at the tolerance.
@@ -30,8 +31,13 @@ constexpr int kManipulatorSteps = 32;
 constexpr int kManipulatorRk6Steps = 10;
 /// RK6's coarse level (Options::coarse_steps): its sensitivity Jacobians start each warm step.
 constexpr int kManipulatorRk6CoarseSteps = 4;
+/// RK8 steps for the manipulator (tip error printed by main()) and its coarse level.
+constexpr int kManipulatorRk8Steps = 4;
+constexpr int kManipulatorRk8CoarseSteps = 2;
 /// RK4 steps for the steel rod (tip error printed by main()).
 constexpr int kSteelSteps = 24;
+/// RK8 steps for the steel rod (tip error printed by main()).
+constexpr int kSteelRk8Steps = 2;
 
 cosserat::Options options(int steps, double tolerance = 1e-10,
                           cosserat::Kinematics kin = cosserat::Kinematics::kFlat) {
@@ -51,6 +57,13 @@ cosserat::Options rk6_options(double tolerance) {
   cosserat::Options o = options(kManipulatorRk6Steps, tolerance);
   o.integrator.method = ode::Method::kRk6;
   o.coarse_steps = kManipulatorRk6CoarseSteps;
+  return o;
+}
+
+cosserat::Options rk8_options(double tolerance) {
+  cosserat::Options o = options(kManipulatorRk8Steps, tolerance);
+  o.integrator.method = ode::Method::kRk8;
+  o.coarse_steps = kManipulatorRk8CoarseSteps;
   return o;
 }
 
@@ -83,6 +96,7 @@ void print_accuracy(const char* name, const rod::RodModel& m, int steps) {
 cosserat::Options manipulator_options(std::int64_t scheme, std::int64_t lie, std::int64_t tol) {
   const double tolerance = std::pow(10.0, -static_cast<double>(tol));
   if (scheme == 6) return rk6_options(tolerance);
+  if (scheme == 8) return rk8_options(tolerance);
   return lie ? lie_options(kManipulatorSteps, tolerance) : options(kManipulatorSteps, tolerance);
 }
 
@@ -92,7 +106,7 @@ cosserat::Options manipulator_options(const benchmark::State& state) {
 
 void manipulator_args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"scheme", "lie", "tol"});
-  b->Args({4, 0, 10})->Args({4, 1, 10})->Args({6, 0, 10})->Args({6, 0, 8});
+  b->Args({4, 0, 10})->Args({4, 1, 10})->Args({6, 0, 10})->Args({6, 0, 8})->Args({8, 0, 10});
   b->Unit(benchmark::kMicrosecond);
 }
 
@@ -172,6 +186,16 @@ void BM_SteelTendonRodCold(benchmark::State& state) {
 }
 BENCHMARK(BM_SteelTendonRodCold)->Unit(benchmark::kMicrosecond);
 
+void BM_SteelTendonRodColdRk8(benchmark::State& state) {
+  const rod::RodModel m = cosserat::testing::steel_tendon_rod();
+  cosserat::Options o = options(kSteelRk8Steps);
+  o.integrator.method = ode::Method::kRk8;
+  cosserat::ShootingSolver solver(m, o);
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  time_solves(state, solver, act, cosserat::Solution());
+}
+BENCHMARK(BM_SteelTendonRodColdRk8)->Unit(benchmark::kMicrosecond);
+
 /// Largest tip error of a warm-started 25..150 degC sweep with `o` against RK4 at 4096 steps.
 void print_sweep_accuracy(const char* name, const cosserat::Options& o) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
@@ -207,12 +231,27 @@ int main(int argc, char** argv) {
                   (tip(m, rk6_options(tol)) - ref).norm());
     }
   }
+  std::printf("circular manipulator, RK8 at %d steps, 90 degC\n", kManipulatorRk8Steps);
+  {
+    const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));
+    const Eigen::Vector3d ref = tip(m, options(4096, 1e-12));
+    std::printf("  tip error at tolerance 1e-10 vs RK4 4096 steps: %.3e m\n",
+                (tip(m, rk8_options(1e-10)) - ref).norm());
+  }
   std::printf("circular manipulator, warm-started sweeps 25..150 degC (5 degC steps)\n");
   print_sweep_accuracy("RK4 32 steps, tol 1e-10", manipulator_options(4, 0, 10));
   print_sweep_accuracy("RKMK4 32 steps, tol 1e-10", manipulator_options(4, 1, 10));
   print_sweep_accuracy("RK6 10 steps, tol 1e-10", manipulator_options(6, 0, 10));
   print_sweep_accuracy("RK6 10 steps, tol 1e-8", manipulator_options(6, 0, 8));
+  print_sweep_accuracy("RK8 4 steps, tol 1e-10", manipulator_options(8, 0, 10));
   print_accuracy("steel 4-tendon rod", cosserat::testing::steel_tendon_rod(), kSteelSteps);
+  {
+    const rod::RodModel m = cosserat::testing::steel_tendon_rod();
+    cosserat::Options o = options(kSteelRk8Steps);
+    o.integrator.method = ode::Method::kRk8;
+    std::printf("  RK8 tip error at %d steps vs RK4 4096 steps: %.3e m\n", kSteelRk8Steps,
+                (tip(m, o) - tip(m, options(4096, 1e-10))).norm());
+  }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tcasim::ode {
 
@@ -21,15 +22,32 @@ enum class Method {
   /// c = 0, 1/3, 2/3, 1/3, 1/2, 1/2, 1), `steps` equal steps: 7/4 of RK4's cost per step,
   /// far fewer steps for a given error on smooth problems.
   kRk6,
+  /// Cooper and Verner's eleven-stage explicit Runge-Kutta method of order eight
+  /// ([CooperVerner1972], nodes 0, 1/2, 1/2, (7 -+ sqrt 21)/14, ..., 1), `steps` equal steps:
+  /// 11/7 of RK6's cost per step, fewer steps again on smooth problems.
+  kRk8,
   kCvode,  ///< SUNDIALS CVODE (scheme chosen by IntegratorOptions::cvode_scheme)
 };
 
-/// True for the fixed-step methods (kRk4, kRk6), which use IntegratorOptions::steps.
-constexpr bool is_fixed_step(Method m) { return m == Method::kRk4 || m == Method::kRk6; }
-/// Order of a fixed-step method (4 or 6); 0 for kCvode (variable order).
-constexpr int order_of(Method m) { return m == Method::kRk4 ? 4 : m == Method::kRk6 ? 6 : 0; }
-/// Name used in messages and options: "rk4", "rk6" or "cvode".
+/// True for the fixed-step methods (kRk4, kRk6, kRk8), which use IntegratorOptions::steps.
+constexpr bool is_fixed_step(Method m) {
+  return m == Method::kRk4 || m == Method::kRk6 || m == Method::kRk8;
+}
+/// Order of a fixed-step method (4, 6 or 8); 0 for kCvode (variable order).
+constexpr int order_of(Method m) {
+  return m == Method::kRk4 ? 4 : m == Method::kRk6 ? 6 : m == Method::kRk8 ? 8 : 0;
+}
+/// Name used in messages and options: "rk4", "rk6", "rk8" or "cvode".
 const char* to_string(Method m);
+
+/// Butcher tableau of a fixed-step method: `stages` stages, a row-major stages x stages
+/// (strictly lower triangular), weights b and nodes c: the tableau the integrator's steps
+/// implement (for tests and documentation). Throws InputError for kCvode.
+struct Tableau {
+  int stages = 0;
+  std::vector<double> a, b, c;
+};
+Tableau tableau(Method m);
 
 /// CVODE's linear multistep family and nonlinear iteration.
 enum class CvodeScheme {
@@ -44,14 +62,14 @@ enum class CvodeScheme {
 /// Options, validated by Integrator's constructor (InputError naming the field).
 struct IntegratorOptions {
   Method method = Method::kRk4;
-  int steps = 100;                    ///< kRk4, kRk6: number of equal steps (>= 1)
+  int steps = 100;                    ///< kRk4, kRk6, kRk8: number of equal steps (>= 1)
   double relative_tolerance = 1e-10;  ///< kCvode (> 0)
   double absolute_tolerance = 1e-14;  ///< kCvode (> 0), in the units of y
   long max_internal_steps = 100000;   ///< kCvode: max steps between two output points (>= 1)
   CvodeScheme cvode_scheme = CvodeScheme::kAdamsFixedPoint;  ///< kCvode
   /// Output points for the observer: s0 + k (s1 - s0)/output_intervals, k = 0..M (>= 0).
-  /// kRk4 and kRk6 observe at step nodes only, so output_intervals must divide `steps`; with
-  /// output_intervals = 0 the observer sees every step node. kCvode with
+  /// The fixed-step methods observe at step nodes only, so output_intervals must divide
+  /// `steps`; with output_intervals = 0 the observer sees every step node. kCvode with
   /// output_intervals = 0 observes s0 and s1 only (values between come from CVODE's
   /// interpolant, with the integration's accuracy).
   int output_intervals = 0;

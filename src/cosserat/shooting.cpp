@@ -1070,7 +1070,7 @@ struct ShootingSolver::Impl {
 
   /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
   /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
-  /// removes the leading O(h^p) term (p: the method's order, 4 or 6) of the discretization
+  /// removes the leading O(h^p) term (p: the method's order, 4, 6 or 8) of the discretization
   /// error of x:
   ///   x(N) = x* + C N^-p  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-p - N_m^-p) / (N_m^-p - N_c^-p).
   /// On failure x, J keep the coarse solution.

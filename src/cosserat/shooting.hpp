@@ -91,8 +91,9 @@ enum class Kinematics {
 
 /// Solver options (validated by ShootingSolver's constructor: InputError naming the field).
 struct Options {
-  /// IVP integrator: kRk4 (the paper's scheme) or kRk6 with `steps` (even, so a node lies at
-  /// L/2), or kCvode with `relative_tolerance`. output_intervals is ignored (set by the solver).
+  /// IVP integrator: kRk4 (the paper's scheme), kRk6 or kRk8 with `steps` (even, so a node
+  /// lies at L/2), or kCvode with `relative_tolerance`. output_intervals is ignored (set by
+  /// the solver).
   ode::IntegratorOptions integrator;
   /// Pose integration: kFlat (default) or the Lie-group RKMK4 method.
   Kinematics kinematics = Kinematics::kFlat;
@@ -108,7 +109,7 @@ struct Options {
   bool continuation = true;
   /// Smallest continuation step in the load fraction before giving up.
   double min_continuation_step = 1.0 / 1024.0;
-  /// Multi-level solve with a fixed-step method (kRk4, kRk6): a coarse problem with this
+  /// Multi-level solve with a fixed-step method (kRk4, kRk6, kRk8): a coarse problem with this
   /// many steps is converged first (to a scaled residual of 1e-9); a cold start then
   /// converges a middle level with twice as many steps (if 4 x this <= steps) and starts
   /// `integrator.steps` at the Richardson extrapolation of the two (O(h^p) term removed, p
@@ -123,7 +124,7 @@ struct Options {
   /// the previous solution with the previous (Broyden-updated) Jacobian.
   bool warm_start_fine_only = true;
   /// Centerline samples in results: 0 = every RK4 step node (64 intervals with CVODE);
-  /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4, kRk6).
+  /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4, kRk6, kRk8).
   int centerline_intervals = 0;
 };
 

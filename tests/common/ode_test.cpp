@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <initializer_list>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -53,6 +54,11 @@ void expect_rk6_orders(const std::vector<double>& h, const std::vector<double>& 
   ExpectOrderInBracket(h, err, 0.5 * (kRk6OrderLow + kRk6OrderHigh),
                        0.5 * (kRk6OrderHigh - kRk6OrderLow));
 }
+// Cooper and Verner's eleven-stage method is order 8; on the levels below (errors 1e-7 ..
+// 1e-12, above round-off) the measured orders are 7.97-8.3. An order-7 tableau (one
+// wrong coefficient) falls outside.
+constexpr double kRk8Order = 8.0;
+constexpr double kRk8OrderTol = 0.45;
 // CVODE controls the local error; the global error over a few periods may exceed
 // rtol by the accumulation over steps: allow a factor 100 (two decades of margin
 // would still catch a tolerance that is ignored or misapplied).
@@ -83,6 +89,12 @@ IntegratorOptions rk4(int steps, int output_intervals = 0) {
 IntegratorOptions rk6(int steps, int output_intervals = 0) {
   IntegratorOptions o = rk4(steps, output_intervals);
   o.method = Method::kRk6;
+  return o;
+}
+
+IntegratorOptions rk8(int steps, int output_intervals = 0) {
+  IntegratorOptions o = rk4(steps, output_intervals);
+  o.method = Method::kRk8;
   return o;
 }
 
@@ -142,8 +154,7 @@ TEST(OdeRk4, NonZeroStartAndNonAutonomousRhsUseTheRightAbscissae) {
   ExpectOrderInBracket(h, err, kRk4Order, kRk4OrderTol);
 }
 
-// Nonlinear pendulum x'' = -sin(x), x(0) = 1, over one period-ish; reference by RK6 with
-// 4096 steps (error ~1e-16 there).
+// Nonlinear pendulum x'' = -sin(x) over about one period.
 void pendulum(double /*s*/, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
   dy[0] = y[1];
   dy[1] = -std::sin(y[0]);
@@ -165,50 +176,106 @@ TEST(OdeRk6, ExponentialDecayConvergesWithOrderSix) {
   expect_rk6_orders(h, err);
 }
 
-TEST(OdeRk6, NonlinearPendulumAndNonAutonomousRhsConvergeWithOrderSix) {
-  const double s1 = 6.0;
-  Integrator fine(2, rk6(4096));
-  Eigen::VectorXd ref(2);
-  ref << 1.0, 0.0;
-  ASSERT_EQ(fine.integrate(pendulum, 0.0, s1, ref).status, Status::kSuccess);
-  std::vector<double> h, err;
-  for (int steps : {12, 24, 48, 96}) {
-    Integrator integrator(2, rk6(steps));
-    Eigen::VectorXd y(2);
-    y << 1.0, 0.0;
-    ASSERT_EQ(integrator.integrate(pendulum, 0.0, s1, y).status, Status::kSuccess);
-    h.push_back(s1 / steps);
+/// Errors at s1 of `method` with each step count against the same method at 4096 steps
+/// (error ~1e-16 there), from y(0) = y0; checks success, stage counts and the end point.
+void fixed_step_errors(const RhsFunction& f, Method method, double s1, const Eigen::VectorXd& y0,
+                       std::initializer_list<int> steps, std::vector<double>& h,
+                       std::vector<double>& err) {
+  const int stages = tableau(method).stages;
+  IntegratorOptions o = rk4(4096);
+  o.method = method;
+  Integrator fine(static_cast<int>(y0.size()), o);
+  Eigen::VectorXd ref = y0;
+  ASSERT_EQ(fine.integrate(f, 0.0, s1, ref).status, Status::kSuccess);
+  for (int n : steps) {
+    o.steps = n;
+    Integrator integrator(static_cast<int>(y0.size()), o);
+    Eigen::VectorXd y = y0;
+    const IntegrationSummary sum = integrator.integrate(f, 0.0, s1, y);
+    ASSERT_EQ(sum.status, Status::kSuccess) << sum.message;
+    EXPECT_EQ(sum.rhs_evaluations, static_cast<long>(stages) * n);
+    EXPECT_EQ(sum.s_final, s1);
+    h.push_back(s1 / n);
     err.push_back((y - ref).norm());
   }
-  expect_rk6_orders(h, err);
-  // y' = s^5 (degree 5, the highest an order-6 method integrates exactly), from s0 = 1.
-  Integrator one(1, rk6(3));
-  Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0 / 6.0);
-  const auto f = [](double s, const Eigen::VectorXd&, Eigen::VectorXd& dy) { dy[0] = std::pow(s, 5); };
-  ASSERT_EQ(one.integrate(f, 1.0, 2.5, y).status, Status::kSuccess);
-  EXPECT_NEAR(y[0], std::pow(2.5, 6) / 6.0, 1e-12);
 }
 
-TEST(OdeRk6, StepsDoNotAllocateAndObserverSeesStepNodes) {
+/// y' = s^(p-1) from s0 = 1 to 2.5 in 3 steps: a method of order p integrates this
+/// polynomial exactly (its quadrature has degree p - 1).
+void expect_exact_for_degree(Method method, int degree, double tolerance) {
+  IntegratorOptions o = rk4(3);
+  o.method = method;
+  Integrator one(1, o);
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0 / (degree + 1));
+  const auto f = [degree](double s, const Eigen::VectorXd&, Eigen::VectorXd& dy) {
+    dy[0] = std::pow(s, degree);
+  };
+  ASSERT_EQ(one.integrate(f, 1.0, 2.5, y).status, Status::kSuccess);
+  EXPECT_NEAR(y[0], std::pow(2.5, degree + 1) / (degree + 1), tolerance);
+}
+
+/// integrate() does not allocate after a warm-up, and the observer sees the step nodes
+/// (o.output_intervals of them after s0, on [0, 1]).
+void expect_allocation_free_with_step_nodes(const IntegratorOptions& o) {
   constexpr int kDim = 12;
-  Integrator integrator(kDim, rk6(100, 25));
+  Integrator integrator(kDim, o);
   Eigen::VectorXd y = Eigen::VectorXd::Ones(kDim);
   const RhsFunction f = decay;
   integrator.integrate(f, 0.0, 1.0, y);  // warm-up
   y.setOnes();
   const long before = g_allocations.load();
   const IntegrationSummary sum = integrator.integrate(f, 0.0, 1.0, y);
-  EXPECT_EQ(g_allocations.load() - before, 0) << "heap allocations during 100 RK6 steps";
+  EXPECT_EQ(g_allocations.load() - before, 0)
+      << "heap allocations during " << o.steps << " " << to_string(o.method) << " steps";
   ASSERT_EQ(sum.status, Status::kSuccess);
+  EXPECT_NEAR(y[0], std::exp(-kDecayRate), 1e-12);
   std::vector<double> seen;
   y.setOnes();
-  integrator.integrate(f, 0.0, 1.0, y, [&seen](double s, const Eigen::VectorXd&) { seen.push_back(s); });
-  ASSERT_EQ(seen.size(), 26u);
+  const auto record = [&seen](double s, const Eigen::VectorXd&) { seen.push_back(s); };
+  integrator.integrate(f, 0.0, 1.0, y, record);
+  ASSERT_EQ(static_cast<int>(seen.size()), o.output_intervals + 1);
   EXPECT_EQ(seen.front(), 0.0);
-  EXPECT_DOUBLE_EQ(seen[1], 0.04);
+  EXPECT_DOUBLE_EQ(seen[1], 1.0 / o.output_intervals);
   EXPECT_EQ(seen.back(), 1.0);
+}
+
+TEST(OdeRk6, NonlinearPendulumAndNonAutonomousRhsConvergeWithOrderSix) {
+  std::vector<double> h, err;
+  fixed_step_errors(pendulum, Method::kRk6, 6.0, Eigen::Vector2d(1.0, 0.0), {12, 24, 48, 96}, h,
+                    err);
+  expect_rk6_orders(h, err);
+  expect_exact_for_degree(Method::kRk6, 5, 1e-12);
+}
+
+TEST(OdeRk6, StepsDoNotAllocateAndObserverSeesStepNodes) {
+  expect_allocation_free_with_step_nodes(rk6(100, 25));
   EXPECT_EQ(to_string(Method::kRk6), std::string("rk6"));
   EXPECT_EQ(order_of(Method::kRk6), 6);
+}
+
+TEST(OdeRk8, NonlinearPendulumConvergesWithOrderEight) {
+  std::vector<double> h, err;
+  fixed_step_errors(pendulum, Method::kRk8, 6.0, Eigen::Vector2d(1.0, 0.3), {12, 24, 48}, h, err);
+  ExpectOrderInBracket(h, err, kRk8Order, kRk8OrderTol);
+}
+
+TEST(OdeRk8, NonAutonomousCoupledRhsConvergesWithOrderEight) {
+  // y0' = cos(s) y0 + s y1^2, y1' = -y0 y1 + sin(2 s): every stage node c_i enters.
+  const auto f = [](double s, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+    dy[0] = std::cos(s) * y[0] + s * y[1] * y[1];
+    dy[1] = -y[0] * y[1] + std::sin(2.0 * s);
+  };
+  std::vector<double> h, err;
+  fixed_step_errors(f, Method::kRk8, 2.0, Eigen::Vector2d(1.0, 0.3), {12, 18, 27}, h, err);
+  ExpectOrderInBracket(h, err, kRk8Order, kRk8OrderTol);
+  expect_exact_for_degree(Method::kRk8, 7, 1e-10);
+}
+
+TEST(OdeRk8, StepsDoNotAllocateAndObserverSeesStepNodes) {
+  expect_allocation_free_with_step_nodes(rk8(20, 5));
+  EXPECT_EQ(to_string(Method::kRk8), std::string("rk8"));
+  EXPECT_EQ(order_of(Method::kRk8), 8);
+  EXPECT_TRUE(is_fixed_step(Method::kRk8));
 }
 
 // Oscillator over ~1.6 periods with CVODE at rtol (atol = 1e-3 rtol); returns the
@@ -420,6 +487,8 @@ std::string rejected_key(F&& make) {
 TEST(OdeOptions, InvalidOptionsAreRejectedNamingTheField) {
   EXPECT_EQ(rejected_key([] { Integrator(1, rk6(0)); }), "steps");
   EXPECT_EQ(rejected_key([] { Integrator(1, rk6(10, 4)); }), "output_intervals");
+  EXPECT_EQ(rejected_key([] { Integrator(1, rk8(0)); }), "steps");
+  EXPECT_EQ(rejected_key([] { Integrator(1, rk8(10, 4)); }), "output_intervals");
   EXPECT_EQ(rejected_key([] { Integrator(1, rk4(0)); }), "steps");
   EXPECT_EQ(rejected_key([] { Integrator(1, rk4(-3)); }), "steps");
   EXPECT_EQ(rejected_key([] { Integrator(0, rk4(10)); }), "dimension");
