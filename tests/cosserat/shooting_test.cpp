@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <initializer_list>
 #include <vector>
 
 #include "common/units.hpp"
@@ -367,37 +368,44 @@ Vector3d converged_tip(const rod::RodModel& m, const Options& o) {
   return Vector3d(sol.tip_state.head<3>());
 }
 
-TEST(ShootingConvergence, Rk4TipErrorHasObservedOrderFourWithGravity) {
+/// Tip errors of general_3d_rod() (gravity, helical strings) solved with `method` at each
+/// step count against RK4 at ref_steps, as a table on stdout, inside order +- tolerance.
+void ExpectTipOrderWithGravity(ode::Method method, int ref_steps, std::initializer_list<int> steps,
+                               double order, double tolerance) {
   const rod::RodModel m = general_3d_rod();
-  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
-  const Vector3d ref = tip(rk4_options(2048, 1e-13));
+  const Vector3d ref = converged_tip(m, rk4_options(ref_steps, 1e-13));
   std::vector<double> h, e;
-  // From 32 steps (h = 1.25 mm, curvature x h <~ 0.05): coarser levels are pre-asymptotic
-  // (observed 4.29 and 4.17 between 8, 16 and 32 steps).
-  for (int n : {32, 64, 128, 256}) {
+  for (int n : steps) {
+    Options o = rk4_options(n, 1e-13);
+    o.integrator.method = method;
     h.push_back(m.length_m / n);
-    e.push_back((tip(rk4_options(n, 1e-13)) - ref).norm());
+    e.push_back((converged_tip(m, o) - ref).norm());
   }
   std::printf("%s", test_support::convergence_table(h, e).c_str());
+  test_support::ExpectOrderInBracket(h, e, order, tolerance);
+}
+
+TEST(ShootingConvergence, Rk4TipErrorHasObservedOrderFourWithGravity) {
+  // From 32 steps (h = 1.25 mm, curvature x h <~ 0.05): coarser levels are pre-asymptotic
+  // (observed 4.29 and 4.17 between 8, 16 and 32 steps).
   /// Bracket around the theoretical order 4 as specified.
   constexpr double kOrderTolerance = 0.15;
-  test_support::ExpectOrderInBracket(h, e, 4.0, kOrderTolerance);
+  ExpectTipOrderWithGravity(ode::Method::kRk4, 2048, {32, 64, 128, 256}, 4.0, kOrderTolerance);
 }
 
 TEST(ShootingConvergence, Rk6TipErrorHasObservedOrderSixWithGravity) {
-  const rod::RodModel m = general_3d_rod();
-  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
-  const Vector3d ref = tip(rk4_options(4096, 1e-13));  // error ~1e-15 m
-  std::vector<double> h, e;
-  // Errors from ~1e-9 m down to ~3e-13 m, above the reference's and the solve's round-off.
-  for (int n : {8, 16, 32}) {
-    h.push_back(m.length_m / n);
-    e.push_back((tip(rk6_options(n, 1e-13)) - ref).norm());
-  }
-  std::printf("%s", test_support::convergence_table(h, e).c_str());
+  // Errors from ~1e-9 m down to ~3e-13 m, above the reference's (~1e-15 m at 4096 steps)
+  // and the solve's round-off.
   /// Bracket around the theoretical order 6 (observed 5.94 and 5.96).
   constexpr double kOrderTolerance = 0.15;
-  test_support::ExpectOrderInBracket(h, e, 6.0, kOrderTolerance);
+  ExpectTipOrderWithGravity(ode::Method::kRk6, 4096, {8, 16, 32}, 6.0, kOrderTolerance);
+}
+
+TEST(ShootingConvergence, Rk8TipErrorHasObservedOrderEightWithGravity) {
+  // Errors from ~1e-9 m down to ~4e-13 m, above the reference's and the solve's round-off.
+  /// Bracket around the theoretical order 8 (observed 8.03, 8.11 and 8.08).
+  constexpr double kOrderTolerance = 0.25;
+  ExpectTipOrderWithGravity(ode::Method::kRk8, 4096, {6, 8, 12, 16}, 8.0, kOrderTolerance);
 }
 
 /// The multi-level solve `multi` (coarse, middle levels and the Richardson start with the
@@ -426,22 +434,6 @@ TEST(ShootingConvergence, Rk6MultiLevelSolveMatchesASingleLevelSolve) {
   Options multi = rk6_options(16, 1e-11);
   multi.coarse_steps = 2;
   ExpectMultiLevelMatchesSingleLevel(multi, 6.0);
-}
-
-TEST(ShootingConvergence, Rk8TipErrorHasObservedOrderEightWithGravity) {
-  const rod::RodModel m = general_3d_rod();
-  const auto tip = [&m](const Options& o) { return converged_tip(m, o); };
-  const Vector3d ref = tip(rk4_options(4096, 1e-13));  // error ~1e-15 m
-  std::vector<double> h, e;
-  // Errors from ~1e-9 m down to ~4e-13 m, above the reference's and the solve's round-off.
-  for (int n : {6, 8, 12, 16}) {
-    h.push_back(m.length_m / n);
-    e.push_back((tip(rk8_options(n, 1e-13)) - ref).norm());
-  }
-  std::printf("%s", test_support::convergence_table(h, e).c_str());
-  /// Bracket around the theoretical order 8 (observed 8.03, 8.11 and 8.08).
-  constexpr double kOrderTolerance = 0.25;
-  test_support::ExpectOrderInBracket(h, e, 8.0, kOrderTolerance);
 }
 
 TEST(ShootingConvergence, Rk8MultiLevelSolveMatchesASingleLevelSolve) {
