@@ -5,7 +5,9 @@
 // The manipulator benchmarks run with RK4 at 32 steps (scheme:4, lie:0), RKMK4 Lie-group
 // kinematics at 32 steps (scheme:4, lie:1), RK6 at 10 steps (scheme:6) and RK8 at 4 steps
 // (scheme:8, coarse level 2 steps), each at the default tolerance 1e-10 (tol:10) and at
-// 1e-8 (tol:8, for RK6). The steel rod runs with RK4 at 24 steps and RK8 at 2 steps.
+// 1e-8 (tol:8, for RK6), in the plane (planar:1, Options::planar_reduction, the default) and,
+// for comparison, as a 3-D problem (planar:0; the results agree to round-off). The steel rod
+// (tendons off the bending plane: a 3-D problem) runs with RK4 at 24 steps and RK8 at 2 steps.
 // Before the benchmarks, main() prints the tip-position error of each discretization (and
 // of RKMK4 at 2..32 steps) against a tight reference (RK4, 4096 steps), at 90 degC and the
 // largest over the sweep, including the error of stopping at the tolerance.
@@ -91,22 +93,32 @@ void print_accuracy(const char* name, const rod::RodModel& m, int steps) {
   }
 }
 
-/// The manipulator's options for the benchmark arguments (scheme 4 or 6, lie 0 or 1,
-/// tolerance 10^-tol).
-cosserat::Options manipulator_options(std::int64_t scheme, std::int64_t lie, std::int64_t tol) {
+/// The manipulator's options for the benchmark arguments (scheme 4, 6 or 8, lie 0 or 1,
+/// tolerance 10^-tol, planar 0 or 1: Options::planar_reduction; the manipulator is planar, so
+/// planar:1 solves in the plane except with lie:1, which the reduction does not cover).
+cosserat::Options manipulator_options(std::int64_t scheme, std::int64_t lie, std::int64_t tol,
+                                      std::int64_t planar) {
   const double tolerance = std::pow(10.0, -static_cast<double>(tol));
-  if (scheme == 6) return rk6_options(tolerance);
-  if (scheme == 8) return rk8_options(tolerance);
-  return lie ? lie_options(kManipulatorSteps, tolerance) : options(kManipulatorSteps, tolerance);
+  cosserat::Options o;
+  if (scheme == 6) {
+    o = rk6_options(tolerance);
+  } else if (scheme == 8) {
+    o = rk8_options(tolerance);
+  } else {
+    o = lie ? lie_options(kManipulatorSteps, tolerance) : options(kManipulatorSteps, tolerance);
+  }
+  o.planar_reduction = planar != 0;
+  return o;
 }
 
 cosserat::Options manipulator_options(const benchmark::State& state) {
-  return manipulator_options(state.range(0), state.range(1), state.range(2));
+  return manipulator_options(state.range(0), state.range(1), state.range(2), state.range(3));
 }
 
 void manipulator_args(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"scheme", "lie", "tol"});
-  b->Args({4, 0, 10})->Args({4, 1, 10})->Args({6, 0, 10})->Args({6, 0, 8})->Args({8, 0, 10});
+  b->ArgNames({"scheme", "lie", "tol", "planar"});
+  b->Args({4, 0, 10, 1})->Args({4, 1, 10, 0})->Args({6, 0, 10, 1})->Args({6, 0, 8, 1});
+  b->Args({8, 0, 10, 1})->Args({4, 0, 10, 0})->Args({6, 0, 10, 0})->Args({8, 0, 10, 0});
   b->Unit(benchmark::kMicrosecond);
 }
 
@@ -239,11 +251,11 @@ int main(int argc, char** argv) {
                 (tip(m, rk8_options(1e-10)) - ref).norm());
   }
   std::printf("circular manipulator, warm-started sweeps 25..150 degC (5 degC steps)\n");
-  print_sweep_accuracy("RK4 32 steps, tol 1e-10", manipulator_options(4, 0, 10));
-  print_sweep_accuracy("RKMK4 32 steps, tol 1e-10", manipulator_options(4, 1, 10));
-  print_sweep_accuracy("RK6 10 steps, tol 1e-10", manipulator_options(6, 0, 10));
-  print_sweep_accuracy("RK6 10 steps, tol 1e-8", manipulator_options(6, 0, 8));
-  print_sweep_accuracy("RK8 4 steps, tol 1e-10", manipulator_options(8, 0, 10));
+  print_sweep_accuracy("RK4 32 steps, tol 1e-10", manipulator_options(4, 0, 10, 1));
+  print_sweep_accuracy("RKMK4 32 steps, tol 1e-10", manipulator_options(4, 1, 10, 0));
+  print_sweep_accuracy("RK6 10 steps, tol 1e-10", manipulator_options(6, 0, 10, 1));
+  print_sweep_accuracy("RK6 10 steps, tol 1e-8", manipulator_options(6, 0, 8, 1));
+  print_sweep_accuracy("RK8 4 steps, tol 1e-10", manipulator_options(8, 0, 10, 1));
   print_accuracy("steel 4-tendon rod", cosserat::testing::steel_tendon_rod(), kSteelSteps);
   {
     const rod::RodModel m = cosserat::testing::steel_tendon_rod();

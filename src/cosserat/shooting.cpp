@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "cosserat/lie_rkmk4.hpp"
+#include "cosserat/planar.hpp"
 
 namespace tcasim::cosserat {
 
@@ -264,6 +265,12 @@ void Actuation::set_temperature_K(std::size_t index, double t_K) {
 struct ShootingSolver::Impl {
   const rod::RodModel& model;
   Options options;
+  // Planar reduction (cosserat/planar.hpp): this Impl solves the reduced problem, with the
+  // 3-D Impl `parent` for what is only needed once per solve (the initial guess).
+  Impl* parent = nullptr;
+  bool planar = false;
+  planar::Rod prod;
+  int x_tca = 6;  // index of the first TCA unknown: after nu(0), omega(0) (3-D) or their in-plane part
   ode::Integrator integrator;
   std::optional<ode::Integrator> output_integrator;
   std::optional<ode::Integrator> sens_integrator;  // kSensitivity: dimension dim (1 + nx)
@@ -325,10 +332,15 @@ struct ShootingSolver::Impl {
   std::vector<std::vector<tca::Segment>> scaled_segments;
   int ivp_count = 0;
 
-  Impl(const rod::RodModel& m, const Options& o)
-      : model(m), options(validated(m, o)), integrator(state_dimension(m), options.integrator) {
+  Impl(const rod::RodModel& m, const Options& o, Impl* parent_3d = nullptr)
+      : model(m),
+        options(validated(m, o)),
+        parent(parent_3d),
+        planar(parent_3d != nullptr),
+        integrator(state_dimension(m, parent_3d != nullptr), options.integrator) {
     n_act = static_cast<int>(model.actuators.size());
-    dim = state_dimension(model);
+    dim = state_dimension(model, planar);
+    x_tca = planar ? 3 : 6;
     L = model.length_m;
     K_nu = model.shear_extension_stiffness();
     K_omega = model.bending_torsion_stiffness();
@@ -342,24 +354,42 @@ struct ShootingSolver::Impl {
     for (int i = 0; i < n_act; ++i) {
       const rod::Actuator& a = model.actuators[i];
       if (a.drive.type == rod::Drive::Type::kTca) {
-        unknown_of[i] = 6 + n_tca++;
+        unknown_of[i] = x_tca + n_tca++;
         act_of.push_back(i);
       }
       length_ratio.push_back(a.rest_length_m / L);
       count.push_back(static_cast<double>(a.count));
       straight.push_back(a.routing.type == rod::Routing::Type::kStraight);
     }
-    k_con = 6 + n_tca;
+    k_con = x_tca + n_tca;
     if (model.tip_constraint) {
       con_target_W = model.tip_constraint->position_W_m;
       n_con = model.tip_constraint->normal_W ? 1 : 3;
       if (model.tip_constraint->normal_W) con_normal_W = *model.tip_constraint->normal_W;
     }
-    nx = 6 + n_tca + n_con;
+    nx = x_tca + n_tca + n_con;
     cT.assign(n_act, 0.0);
+    if (planar) {
+      prod.kn_x = K_nu.x();
+      prod.kn_z = K_nu.z();
+      prod.kw_y = K_omega.y();
+      for (int i = 0; i < n_act; ++i) {
+        prod.rho.push_back(model.actuators[i].routing.offset_m.x());
+        prod.length_ratio.push_back(length_ratio[i]);
+        prod.count.push_back(count[i]);
+        prod.direction_of.push_back(unknown_of[i]);
+      }
+      prod.cT.assign(n_act, 0.0);
+    }
     y.resize(dim);
     scaled_segments.resize(n_act);
-    rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
+    if (planar) {
+      rhs = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+        planar::rhs(prod, yy.data(), dy.data());
+      };
+    } else {
+      rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
+    }
     cache.resize(n_act);
     dF_ddelta.assign(n_act, 0.0);
     if (options.jacobian == JacobianMethod::kSensitivity && nx > kMaxSensitivityUnknowns) {
@@ -381,9 +411,15 @@ struct ShootingSolver::Impl {
       if (use_mid) mid_sens_integrator.emplace(dim * (1 + nx), mid);
       rhs_ws.resize(6, nx);
       Y.resize(dim * (1 + nx));
-      rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
-        eval_rhs_sens(s, yy, dy);
-      };
+      if (planar) {
+        rhs_sens = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+          planar::rhs_sens(prod, dim, nx, yy.data(), dy.data());
+        };
+      } else {
+        rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+          eval_rhs_sens(s, yy, dy);
+        };
+      }
     }
     if (options.kinematics == Kinematics::kLieGroup) {
       lie_plain.emplace(dim, 0, options.integrator.steps);
@@ -399,8 +435,39 @@ struct ShootingSolver::Impl {
     use_level(false);
   }
 
-  static int state_dimension(const rod::RodModel& m) {
-    return kDelta + static_cast<int>(m.actuators.size());
+  static int state_dimension(const rod::RodModel& m, bool planar_state = false) {
+    return (planar_state ? planar::kDelta : kDelta) + static_cast<int>(m.actuators.size());
+  }
+
+  /// Whether the model and options admit the planar reduction (cosserat/planar.hpp): straight
+  /// strings on the body x axis, reference curvature about y, no tip constraint, a fixed-step
+  /// flat integration with sensitivity Jacobians, and at most planar::kMaxActuators actuators
+  /// and planar::kMaxDirections unknowns. The actuation is checked per solve (planar_loads).
+  static bool planar_model(const rod::RodModel& m, const Options& o) {
+    if (!o.planar_reduction || !ode::is_fixed_step(o.integrator.method) ||
+        o.kinematics != Kinematics::kFlat || o.jacobian != JacobianMethod::kSensitivity ||
+        m.tip_constraint || static_cast<int>(m.actuators.size()) > planar::kMaxActuators) {
+      return false;
+    }
+    if (m.reference_curvature_B_1_m.x() != 0.0 || m.reference_curvature_B_1_m.z() != 0.0) {
+      return false;
+    }
+    int n_tca = 0;
+    for (const rod::Actuator& a : m.actuators) {
+      if (a.routing.type != rod::Routing::Type::kStraight || a.routing.offset_m.y() != 0.0) {
+        return false;
+      }
+      if (a.drive.type == rod::Drive::Type::kTca) ++n_tca;
+    }
+    return 3 + n_tca <= planar::kMaxDirections;
+  }
+
+  /// Whether the actuation keeps a planar model in its plane: gravity and tip force without
+  /// a component along R_WB0 e_y, the tip moment along it only (exact tests).
+  bool planar_loads(const Actuation& act) const {
+    const Mat3& R0 = model.R_WB0;
+    return R0.col(1).dot(act.gravity_W_m_s2) == 0.0 && R0.col(1).dot(act.tip_force_W_N) == 0.0 &&
+           R0.col(0).dot(act.tip_moment_W_Nm) == 0.0 && R0.col(2).dot(act.tip_moment_W_Nm) == 0.0;
   }
 
   static Options validated(const rod::RodModel& m, Options o) {
@@ -604,10 +671,21 @@ struct ShootingSolver::Impl {
       }
     }
     f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+    if (planar) {
+      prod.cT = cT;
+      const Vec3 f_B0 = model.R_WB0.transpose() * f_ext_W;
+      prod.f_x = f_B0.x();
+      prod.f_z = f_B0.z();
+    }
   }
 
   void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
     y0.setZero();
+    if (planar) {
+      y0[planar::kCS] = 1.0;  // Rot_y(0) = I
+      y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z, kappa) are contiguous
+      return;
+    }
     y0.segment<3>(kP) = model.base_position_W_m;
     Eigen::Map<Mat3>(y0.data() + kR) = model.R_WB0;
     y0.segment<3>(kNu) = x.head<3>();
@@ -660,7 +738,8 @@ struct ShootingSolver::Impl {
     Y.setZero();
     initial_state(x, y);
     Y.head(dim) = y;
-    for (int j = 0; j < 6; ++j) Y[dim * (j + 1) + kNu + j] = 1.0;  // d y(0) / d (nu0, omega0)
+    // d y(0) / d (nu0, omega0) (planar: d y(0) / d (nu_x0, nu_z0, kappa0))
+    for (int j = 0; j < x_tca; ++j) Y[dim * (j + 1) + (planar ? planar::kNu : kNu) + j] = 1.0;
     ++ivp_count;
     if (active_lie_sens) {
       if (!active_lie_sens->integrate(rhs_sens, 0.0, L, Y) || !all_finite(Y)) return false;
@@ -670,8 +749,9 @@ struct ShootingSolver::Impl {
     }
     y = Y.head(dim);
     if (!tip_residual(act, lambda, x, y, r, below_closed)) return false;
-    // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
     J.resize(nx, nx);
+    if (planar) return planar_jacobian(act, lambda, J);
+    // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
     const Eigen::Map<const Mat3> R(y.data() + kR);
     const Vec3 nu = y.segment<3>(kNu), omega = y.segment<3>(kOmega);
     const Vec3 F_e = lambda * act.tip_force_W_N + reaction_W(x), M_e = lambda * act.tip_moment_W_Nm;
@@ -710,10 +790,40 @@ struct ShootingSolver::Impl {
     return J.allFinite();
   }
 
+  /// Planar reduction: the Jacobian of the scaled residual from the sensitivities in Y (the
+  /// tip wrench rows by planar::tip_wrench_sens, the TCA rows by the chain rule).
+  bool planar_jacobian(const Actuation& act, double lambda, Eigen::MatrixXd& J) const {
+    const Vec3 F_B0 = model.R_WB0.transpose() * (lambda * act.tip_force_W_N);
+    double dw[3 * planar::kMaxDirections];
+    planar::tip_wrench_sens(prod, F_B0.x(), F_B0.z(), dim, nx, Y.data(), dw);
+    for (int j = 0; j < nx; ++j) {
+      J(0, j) = dw[3 * j] / Fc;
+      J(1, j) = dw[3 * j + 1] / Fc;
+      J(2, j) = dw[3 * j + 2] / (Fc * L);
+      const double* yj = Y.data() + dim * (j + 1);
+      for (int i = 0; i < n_act; ++i) {
+        const int k = unknown_of[i];
+        if (k >= 0) J(k, j) = ((k == j ? 1.0 : 0.0) - dF_ddelta[i] * yj[planar::kDelta + i]) / Fc;
+      }
+    }
+    return J.allFinite();
+  }
+
   // docs/conventions.md "Tip conditions" (body frame), scaled.
   bool tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& yL, Eigen::VectorXd& r, bool* below_closed) {
     r.resize(nx);
+    if (planar) {
+      // The in-plane rows (force x, z; moment y) of the 3-D residual; the others are zero.
+      const Vec3 F_B0 = model.R_WB0.transpose() * (lambda * act.tip_force_W_N);
+      const double M_y = model.R_WB0.col(1).dot(lambda * act.tip_moment_W_Nm);
+      double w[3];
+      planar::tip_wrench(prod, omega_star.y(), F_B0.x(), F_B0.z(), M_y, yL.data(), w);
+      r[0] = w[0] / Fc;
+      r[1] = w[1] / Fc;
+      r[2] = w[2] / (Fc * L);
+      return tca_rows(x, yL, planar::kDelta, r, below_closed);
+    }
     const Eigen::Map<const Mat3> R(yL.data() + kR);
     const Vec3 nu = yL.segment<3>(kNu);
     const Vec3 omega = yL.segment<3>(kOmega);
@@ -734,6 +844,13 @@ struct ShootingSolver::Impl {
     // Tip constraint: position error (pinned) or its normal component, scaled by L.
     if (n_con == 3) r.segment<3>(k_con) = (yL.segment<3>(kP) - con_target_W) / L;
     if (n_con == 1) r[k_con] = con_normal_W.dot(yL.segment<3>(kP) - con_target_W) / L;
+    return tca_rows(x, yL, kDelta, r, below_closed);
+  }
+
+  /// TCA rows r_k = (T_k - F_tca(delta_k(L))) / F_c with delta at yL[delta0 + i]; sets
+  /// dF_ddelta. False when a TCA law fails or r is not finite.
+  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0,
+                Eigen::VectorXd& r, bool* below_closed) {
     if (below_closed) *below_closed = false;
     for (int i = 0; i < n_act; ++i) {
       const int k = unknown_of[i];
@@ -741,7 +858,7 @@ struct ShootingSolver::Impl {
       bool bc = false;
       double F = 0.0;
       try {
-        F = tca_force(*model.actuators[i].drive.tca, yL[kDelta + i], scaled_segments[i], &bc,
+        F = tca_force(*model.actuators[i].drive.tca, yL[delta0 + i], scaled_segments[i], &bc,
                       &dF_ddelta[i]);
       } catch (const DomainError&) {
         return false;
@@ -762,6 +879,10 @@ struct ShootingSolver::Impl {
 
   Eigen::VectorXd typical_scale() const {
     Eigen::VectorXd t(nx);
+    if (planar) {
+      t << 1.0, 1.0, 1.0 / L, Eigen::VectorXd::Constant(n_tca, Fc);
+      return t;
+    }
     t.head<3>().setOnes();
     t.segment<3>(3).setConstant(1.0 / L);
     t.segment(6, n_tca).setConstant(Fc);
@@ -861,6 +982,11 @@ struct ShootingSolver::Impl {
   /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria).
   Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
                                  bool* used_gravity = nullptr) {
+    if (planar) {
+      // The 3-D guess of a planar problem lies in the plane (its other components are
+      // exact zeros): keep its in-plane unknowns.
+      return reduce(parent->initial_guess(act, lambda, with_gravity, used_gravity));
+    }
     if (used_gravity) *used_gravity = false;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
     set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
@@ -1213,6 +1339,42 @@ struct ShootingSolver::Impl {
     x_acc = x;
   }
 
+  /// Planar reduction: the in-plane unknowns (nu_x, nu_z, omega_y, T_tca...) of 3-D unknowns.
+  Eigen::VectorXd reduce(const Eigen::VectorXd& x3) const {
+    Eigen::VectorXd x(nx);
+    x << x3[0], x3[2], x3[4], x3.segment(6, n_tca);
+    return x;
+  }
+
+  /// Whether 3-D unknowns lie in the plane of the planar reduction (exact zeros).
+  static bool in_plane(const Eigen::VectorXd& x3) {
+    return x3[1] == 0.0 && x3[3] == 0.0 && x3[5] == 0.0;
+  }
+
+  /// Planar reduction: the 3-D unknowns of reduced ones.
+  Eigen::VectorXd embed_unknowns(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd x3(6 + n_tca);
+    x3 << x[0], 0.0, x[1], 0.0, x[2], 0.0, x.tail(n_tca);
+    return x3;
+  }
+
+  /// Planar reduction: the 3-D IVP state (layout of shooting.hpp) of a planar one.
+  Eigen::VectorXd embed_state(const Eigen::VectorXd& yp) const {
+    const Mat3& R0 = model.R_WB0;
+    const Vec3 p0 = model.base_position_W_m;
+    Eigen::VectorXd y3 = Eigen::VectorXd::Zero(state_dimension(model));
+    y3.segment<3>(state_layout::kP) = p0 + R0 * Vec3(yp[planar::kQ], 0.0, yp[planar::kQ + 1]);
+    const double c = yp[planar::kCS], s = yp[planar::kCS + 1];
+    Mat3 rot;
+    rot << c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c;
+    Eigen::Map<Mat3>(y3.data() + state_layout::kR) = R0 * rot;
+    y3.segment<3>(state_layout::kNu) = Vec3(yp[planar::kNu], 0.0, yp[planar::kNu + 1]);
+    y3.segment<3>(state_layout::kOmega) = Vec3(0.0, yp[planar::kKappa], 0.0);
+    y3.segment<3>(state_layout::kC) = L * p0 + R0 * Vec3(yp[planar::kC], 0.0, yp[planar::kC + 1]);
+    y3.tail(n_act) = yp.tail(n_act);
+    return y3;
+  }
+
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary) {
     Eigen::VectorXd r;
     sol.unknowns = x;
@@ -1229,16 +1391,22 @@ struct ShootingSolver::Impl {
     sol.tip_state = y;
     for (int i = 0; i < n_act; ++i) {
       sol.tensions_N[i] = cT[i] / count[i];
-      sol.elongations_m[i] = y[kDelta + i];
+      sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];
     }
-    // Global equilibrium (docs/conventions.md): n(0), m(0) against the applied loads.
+    if (!planar) equilibrium(act, x, y, summary);  // planar: by the 3-D Impl after embedding
+  }
+
+  /// Global equilibrium (docs/conventions.md): n(0), m(0) of the 3-D unknowns x against the
+  /// applied loads, with yL = y(L) (3-D layout) and cT, f_ext_W set for x at full load.
+  void equilibrium(const Actuation& act, const Eigen::VectorXd& x, const Eigen::VectorXd& yL,
+                   Summary& summary) const {
     const Mat3& R0 = model.R_WB0;
     const Vec3 p0 = model.base_position_W_m;
     const Vec3 n0 = R0 * K_nu.cwiseProduct(x.head<3>() - nu_star);
     const Vec3 m0 = R0 * K_omega.cwiseProduct(x.segment<3>(3) - omega_star);
     const Vec3 w = f_ext_W;
-    const Vec3 pL = y.segment<3>(kP);
-    const Vec3 c = y.segment<3>(kC);
+    const Vec3 pL = yL.segment<3>(kP);
+    const Vec3 c = yL.segment<3>(kC);
     const Vec3 F_tip = act.tip_force_W_N + reaction_W(x);  // applied load plus the holder's
     Vec3 n_exp = F_tip + L * w;
     Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - L * p0).cross(w);
@@ -1408,6 +1576,25 @@ struct ShootingSolver::Impl {
     return done(Summary::Status::kConverged, "", xc);
   }
 
+  /// Solves a planar problem (planar_model and planar_loads hold) with the planar Impl `p`:
+  /// the unknowns and tip state of `sol` are 3-D on entry and on return (the Jacobians, the
+  /// coarse-level fields and the path stay in p's reduced unknowns); the global equilibrium
+  /// is checked on the embedded 3-D solution.
+  Summary solve_planar(Impl& p, const Actuation& act, Solution& sol) {
+    if (sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite()) {
+      sol.unknowns = p.reduce(sol.unknowns);
+    }
+    Summary summary = p.solve(act, sol);
+    summary.planar = true;
+    if (sol.unknowns.size() == p.nx) sol.unknowns = p.embed_unknowns(sol.unknowns);
+    if (sol.tip_state.size() == p.dim) {
+      sol.tip_state = p.embed_state(sol.tip_state);
+      set_parameters(act, 1.0, sol.unknowns);
+      equilibrium(act, sol.unknowns, sol.tip_state, summary);
+    }
+    return summary;
+  }
+
   rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary) {
     rod::Result res;
     res.scenario = model.name;
@@ -1489,11 +1676,22 @@ struct ShootingSolver::Impl {
 
 // ---------------------------------------------------------------------------------------
 ShootingSolver::ShootingSolver(const rod::RodModel& model, const Options& options)
-    : impl_(std::make_unique<Impl>(model, options)) {}
+    : impl_(std::make_unique<Impl>(model, options)) {
+  if (Impl::planar_model(model, impl_->options)) {
+    planar_ = std::make_unique<Impl>(model, options, impl_.get());
+  }
+}
 ShootingSolver::~ShootingSolver() = default;
 ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
 
 Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
+  // The planar reduction needs a planar actuation and, for a warm start, in-plane unknowns
+  // (a 3-D equilibrium that left the plane stays a 3-D problem).
+  const bool out_of_plane_start = solution.valid && solution.unknowns.size() == impl_->nx &&
+                                  !Impl::in_plane(solution.unknowns);
+  if (planar_ && impl_->planar_loads(actuation) && !out_of_plane_start) {
+    return impl_->solve_planar(*planar_, actuation, solution);
+  }
   return impl_->solve(actuation, solution);
 }
 

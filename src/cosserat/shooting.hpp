@@ -22,6 +22,9 @@
 /// (see shooting.cpp for the floor's reason). Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
 /// DomainError at a trial point is a failed trial (the line search backs off).
+/// Planar problems are solved in the plane with the in-plane states and unknowns
+/// (Options::planar_reduction, cosserat/planar.hpp); Solution::unknowns and tip_state keep
+/// the layouts above.
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -123,6 +126,15 @@ struct Options {
   /// Warm starts with a Jacobian skip the coarse level and iterate on the fine problem from
   /// the previous solution with the previous (Broyden-updated) Jacobian.
   bool warm_start_fine_only = true;
+  /// Solve planar problems in the plane (docs/conventions.md "Planar reduction"): when the
+  /// strings are straight with offsets on body x, the reference curvature is about body y,
+  /// there is no tip constraint, the loads stay in the base frame's x-z plane (exact tests
+  /// per solve), the method is fixed-step with flat kinematics and sensitivity Jacobians, and
+  /// a warm start's unknowns lie in the plane, the IVP has 9 + n instead of 21 + n states and
+  /// the Newton iteration 3 + n_tca instead of 6 + n_tca unknowns. The discretization is the
+  /// same (results agree with the 3-D solve to round-off); the in-plane unknowns of a
+  /// solution are reported in the 3-D layout with exact zeros elsewhere.
+  bool planar_reduction = true;
   /// Centerline samples in results: 0 = every RK4 step node (64 intervals with CVODE);
   /// otherwise this many equal intervals (must be even, and divide `steps` for kRk4, kRk6, kRk8).
   int centerline_intervals = 0;
@@ -157,6 +169,8 @@ struct Summary {
   /// True if an extension TCA ended below its closed length (delta < 0): the free-coil
   /// law was extrapolated there (coil contact is not modelled by this solver).
   bool tca_below_closed_length = false;
+  /// True if the solve ran in the plane (Options::planar_reduction).
+  bool planar = false;
 
   bool converged() const { return status == Status::kConverged; }
 };
@@ -167,8 +181,12 @@ const char* to_string(Summary::Status s);
 struct Solution {
   bool valid = false;          ///< false: solve starts from the initial guess (a cold solve)
   Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca..., tip reaction)
-  Eigen::MatrixXd jacobian;    ///< d r_scaled / d x at (or near) `unknowns`; may be empty
-  Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP
+  /// d r_scaled / d x at (or near) `unknowns`; may be empty. After a planar solve
+  /// (Summary::planar) it is the Jacobian of the in-plane unknowns (nu_x, nu_z, omega_y,
+  /// T_tca...), as are coarse_unknowns, coarse_jacobian and the path's unknowns; a solve
+  /// ignores those fields when their size is not its own number of unknowns.
+  Eigen::MatrixXd jacobian;
+  Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP (3-D layout, also after a planar solve)
   /// Solution and Jacobian of the coarse level (Options::coarse_steps), for warm starts.
   Eigen::VectorXd coarse_unknowns;
   Eigen::MatrixXd coarse_jacobian;
@@ -252,6 +270,7 @@ class ShootingSolver {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl> planar_;  ///< the planar reduction's solver (planar models only)
 };
 
 /// Convenience: solves the model's own actuation and returns the result.
