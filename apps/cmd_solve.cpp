@@ -30,6 +30,7 @@ struct IntegratorFlags {
   int steps = 0;        // 0: solver default
   double rtol = 0.0;    // 0: fixed steps
   std::string scheme = "rk4";
+  bool no_planar = false;
 };
 
 void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
@@ -43,6 +44,9 @@ void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
                                "cosserat: use SUNDIALS CVODE with this relative tolerance");
   steps->excludes(rtol);
   scheme->excludes(rtol);
+  cmd->add_flag("--no-planar", f.no_planar,
+                "cosserat: solve a planar problem as a 3-D one (the same discretization, about "
+                "twice the time; for cross-checks of the planar reduction)");
 }
 
 cosserat::Options cosserat_options(const IntegratorFlags& f) {
@@ -64,6 +68,7 @@ cosserat::Options cosserat_options(const IntegratorFlags& f) {
   // RK8's coarse level: 2 steps are about as accurate as RK6's 4 (its Jacobians start the
   // warm steps of sweeps).
   if (o.integrator.method == ode::Method::kRk8) o.coarse_steps = 2;
+  o.planar_reduction = !f.no_planar;
   return o;
 }
 
