@@ -87,12 +87,23 @@ void add_fe_flags(CLI::App* cmd, FeFlags& f) {
   cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
 }
 
+/// The FE options of the flags; a bad value is reported under its flag's name.
 beam_fe::Options fe_options(const FeFlags& f) {
+  require(f.elements >= 1, "--elements", f.elements, "must be >= 1");
+  require(f.order == 1 || f.order == 2, "--order", f.order, "must be 1 or 2");
   beam_fe::Options o;
   o.elements = f.elements;
   o.order = f.order;
-  o.integration = beam_fe::parse_integration(f.integration);
-  o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
+  try {
+    o.integration = beam_fe::parse_integration(f.integration);
+  } catch (const InputError& e) {
+    throw InputError("--integration", e.value(), e.rule());
+  }
+  try {
+    o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
+  } catch (const InputError& e) {
+    throw InputError("--linear-solver", e.value(), e.rule());
+  }
   return o;
 }
 
