@@ -14,6 +14,7 @@
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "rod/result.hpp"
 #include "tca/calibration.hpp"
 #include "tca/tca.hpp"
 
@@ -106,7 +107,7 @@ void run_fit(const FitOptions& o) {
                                 fmt::join(o.fit, ","), o.data, tca->material().source));
     std::ofstream file(o.out);
     require(static_cast<bool>(file), "--out", o.out, "cannot be opened for writing");
-    file << j.dump(2) << "\n";
+    file << rod::format_json(j) << "\n";
   }
   if (r.status == tca::CalibrationStatus::kFailed) {
     throw DomainError("calibration failed: " + r.message);

@@ -15,6 +15,7 @@
 #include "common/units.hpp"
 #include "cosserat/inverse.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/result.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::app {
@@ -47,7 +48,7 @@ nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 void write_json(const nlohmann::json& j, const std::string& path) {
   Output out(path);
-  out.stream() << j.dump(2) << "\n";
+  out.stream() << rod::format_json(j) << "\n";
   out.stream().flush();
 }
 

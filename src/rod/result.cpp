@@ -181,8 +181,57 @@ void flag_closed_coils(const RodModel& model, Result& result) {
   }
 }
 
+namespace {
+
+bool is_scalar(const json& v) { return !v.is_structured(); }
+
+void append_json(const json& j, int indent, std::string& out) {
+  if (j.is_object() && !j.empty()) {
+    out += "{\n";
+    bool first = true;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (!first) out += ",\n";
+      first = false;
+      out.append(indent + 2, ' ');
+      out += json(it.key()).dump();
+      out += ": ";
+      append_json(it.value(), indent + 2, out);
+    }
+    out += '\n';
+    out.append(indent, ' ');
+    out += '}';
+  } else if (j.is_array() && !j.empty() && std::all_of(j.begin(), j.end(), is_scalar)) {
+    out += '[';
+    for (std::size_t k = 0; k < j.size(); ++k) {
+      if (k > 0) out += ", ";
+      out += j[k].dump();
+    }
+    out += ']';
+  } else if (j.is_array() && !j.empty()) {
+    out += "[\n";
+    for (std::size_t k = 0; k < j.size(); ++k) {
+      if (k > 0) out += ",\n";
+      out.append(indent + 2, ' ');
+      append_json(j[k], indent + 2, out);
+    }
+    out += '\n';
+    out.append(indent, ' ');
+    out += ']';
+  } else {
+    out += j.dump();  // a scalar, {} or []
+  }
+}
+
+}  // namespace
+
+std::string format_json(const json& j) {
+  std::string out;
+  append_json(j, 0, out);
+  return out;
+}
+
 void write_result(const Result& result, const std::string& path) {
-  const std::string text = to_json(result).dump(2) + "\n";
+  const std::string text = format_json(to_json(result)) + "\n";
   if (path.empty() || path == "-") {
     std::cout << text << std::flush;
     if (!std::cout) throw InputError("result file", "\"-\"", "could not be written to stdout");

@@ -54,7 +54,13 @@ nlohmann::json to_json(const Result& result);
 /// Both solvers call it when they fill a result.
 void flag_closed_coils(const RodModel& model, Result& result);
 
-/// Writes to_json(result) to `path`, or to stdout when path is empty or "-".
+/// JSON text with objects indented by two spaces per level and every array of scalars
+/// (numbers, strings, booleans, nulls) on one line, e.g. a position [x, y, z], so a
+/// centerline takes one line per sample and a rotation matrix three. Numbers are written as
+/// by nlohmann::json::dump (shortest round-trip form); the text parses to `j`.
+std::string format_json(const nlohmann::json& j);
+
+/// Writes format_json(to_json(result)) to `path`, or to stdout when path is empty or "-".
 void write_result(const Result& result, const std::string& path);
 
 /// The paper's bending-radius metric (Fig. 6): the circle through three points on the

@@ -124,6 +124,16 @@ TEST(ResultJson, NonFiniteValueBecomesNullAndMarksTheResultNotConverged) {
   EXPECT_TRUE(contains(to_json(r).at("message").get<std::string>(), "diverged; non-finite"));
 }
 
+TEST(FormatJson, PutsScalarArraysOnOneLineAndParsesBack) {
+  const json small = {{"p", {1.5, -2.0, 3.0}}, {"m", {{1, 0}, {0, 1}}}, {"e", json::array()},
+                      {"o", json::object()}, {"s", "x"}};
+  EXPECT_EQ(format_json(small),
+            "{\n  \"e\": [],\n  \"m\": [\n    [1, 0],\n    [0, 1]\n  ],\n  \"o\": {},\n"
+            "  \"p\": [1.5, -2.0, 3.0],\n  \"s\": \"x\"\n}");
+  const json j = to_json(sample_result());
+  EXPECT_EQ(json::parse(format_json(j)), j);
+}
+
 TEST(WriteResult, WritesAFileOrStdoutAndNamesAnUnwritablePath) {
   const Result r = sample_result();
   const auto path = (std::filesystem::temp_directory_path() / "tcasim_rod_test_result.json").string();
