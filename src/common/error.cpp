@@ -14,13 +14,12 @@ InputError::InputError(std::string key, std::string value, std::string rule)
 
 std::string format_value(double v) { return fmt::format("{}", v); }
 
-void require(bool ok, const std::string& key, double value, const std::string& rule) {
-  if (!ok) throw InputError(key, format_value(value), rule);
+void throw_input_error(std::string_view key, double value, std::string_view rule) {
+  throw InputError(std::string(key), format_value(value), std::string(rule));
 }
 
-void require(bool ok, const std::string& key, const std::string& value_text,
-             const std::string& rule) {
-  if (!ok) throw InputError(key, value_text, rule);
+void throw_input_error(std::string_view key, std::string_view value_text, std::string_view rule) {
+  throw InputError(std::string(key), std::string(value_text), std::string(rule));
 }
 
 }  // namespace tcasim

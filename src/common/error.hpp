@@ -7,6 +7,7 @@
 ///  - an external library's error code: ExternalError, converted where it is called.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace tcasim {
 
@@ -38,11 +39,22 @@ class ExternalError : public std::runtime_error {
 /// Formats a number for messages: shortest round-trip representation.
 std::string format_value(double v);
 
-/// Throws InputError(key, format_value(value), rule) unless `ok`.
-void require(bool ok, const std::string& key, double value, const std::string& rule);
+/// Throw InputError(key, format_value(value), rule) / InputError(key, value_text, rule).
+[[noreturn]] void throw_input_error(std::string_view key, double value, std::string_view rule);
+[[noreturn]] void throw_input_error(std::string_view key, std::string_view value_text,
+                                    std::string_view rule);
+
+/// Throws InputError(key, format_value(value), rule) unless `ok`. Views, so string literals
+/// are not copied on the (usual) passing path; callers in hot loops should also avoid
+/// building the rule by concatenation before the test.
+inline void require(bool ok, std::string_view key, double value, std::string_view rule) {
+  if (!ok) throw_input_error(key, value, rule);
+}
 
 /// Throws InputError(key, value_text, rule) unless `ok`.
-void require(bool ok, const std::string& key, const std::string& value_text,
-             const std::string& rule);
+inline void require(bool ok, std::string_view key, std::string_view value_text,
+                    std::string_view rule) {
+  if (!ok) throw_input_error(key, value_text, rule);
+}
 
 }  // namespace tcasim

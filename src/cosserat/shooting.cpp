@@ -1476,14 +1476,15 @@ struct ShootingSolver::Impl {
     ivp_count = 0;
     acc_full_load = false;
     coarse_jacobian_x.resize(0);  // a solve never depends on where an earlier one took Jacobians
-    require(static_cast<int>(act.actuators.size()) == n_act, "actuation.actuators",
-            static_cast<double>(act.actuators.size()),
-            "must have one entry per model actuator (" + std::to_string(n_act) + ")");
+    // Messages are built only on failure (solve is called in sweeps and design loops).
+    if (static_cast<int>(act.actuators.size()) != n_act) {
+      throw_input_error("actuation.actuators", static_cast<double>(act.actuators.size()),
+                        "must have one entry per model actuator (" + std::to_string(n_act) + ")");
+    }
     for (int i = 0; i < n_act; ++i) {
-      if (unknown_of[i] >= 0) {
-        require(!act.actuators[i].segments.empty(),
-                "actuation.actuators[" + std::to_string(i) + "].segments", 0.0,
-                "must not be empty for a TCA drive");
+      if (unknown_of[i] >= 0 && act.actuators[i].segments.empty()) {
+        throw_input_error("actuation.actuators[" + std::to_string(i) + "].segments", 0.0,
+                          "must not be empty for a TCA drive");
       }
     }
     const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
