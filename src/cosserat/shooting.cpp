@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -878,11 +879,8 @@ struct ShootingSolver::Impl {
   }
 
   Eigen::VectorXd typical_scale() const {
+    assert(!planar && "the planar reduction uses sensitivity Jacobians, never differences");
     Eigen::VectorXd t(nx);
-    if (planar) {
-      t << 1.0, 1.0, 1.0 / L, Eigen::VectorXd::Constant(n_tca, Fc);
-      return t;
-    }
     t.head<3>().setOnes();
     t.segment<3>(3).setConstant(1.0 / L);
     t.segment(6, n_tca).setConstant(Fc);
