@@ -79,10 +79,6 @@ Dual<N> operator*(const Dual<N>& a, double b) {
   return b * a;
 }
 template <int N>
-Dual<N> operator/(const Dual<N>& a, double b) {
-  return (1.0 / b) * a;
-}
-template <int N>
 Dual<N> operator/(double a, const Dual<N>& b) {
   Dual<N> r;
   r.v = a / b.v;
