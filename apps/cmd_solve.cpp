@@ -209,7 +209,16 @@ void add_sweep_command(CLI::App& app) {
     std::ostream& os = out.stream();
     fmt::print(os, "{},converged,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m",
                by_temperature ? "temperature_degC" : "tension_N");
-    for (const auto& a : model.actuators) fmt::print(os, ",{0}_tension_N,{0}_elongation_m", a.name);
+    for (const auto& a : model.actuators) {
+      fmt::print(os, ",{0}_tension_N,{0}_elongation_m", a.name);
+      // Coil contact of TCA drives in the solved state (per segment for a segmented TCA).
+      if (a.drive.type == rod::Drive::Type::kTca) fmt::print(os, ",{0}_coils_closed,{0}_contact_force_N", a.name);
+      if (a.drive.segmented) {
+        for (std::size_t k = 1; k <= a.drive.segments.size(); ++k) {
+          fmt::print(os, ",{0}_{1}_coils_closed,{0}_{1}_contact_force_N", a.name, k);
+        }
+      }
+    }
     fmt::print(os, "\n");
 
     const bool progress = values.size() >= 20;
@@ -228,7 +237,13 @@ void add_sweep_command(CLI::App& app) {
                  r.iterations, r.residual, r.tip_position_W_m.x(), r.tip_position_W_m.y(),
                  r.tip_position_W_m.z(),
                  r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
-      for (const auto& a : r.actuators) fmt::print(os, ",{:.12e},{:.12e}", a.tension_N, a.elongation_m);
+      for (const auto& a : r.actuators) {
+        fmt::print(os, ",{:.12e},{:.12e}", a.tension_N, a.elongation_m);
+        if (a.is_tca) fmt::print(os, ",{},{:.12e}", a.coils_closed ? 1 : 0, a.contact_force_N);
+        for (const auto& seg : a.segments) {
+          fmt::print(os, ",{},{:.12e}", seg.second.coils_closed ? 1 : 0, seg.second.contact_force_N);
+        }
+      }
       fmt::print(os, "\n");
       if (progress) {
         const double secs =

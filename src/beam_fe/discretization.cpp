@@ -16,22 +16,20 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
-/// Current tension of one string of a TCA drive and dF/d(elongation).
-struct TcaTension {
-  double tension_N, dF_ddelta_N_m;
-};
-
-TcaTension tca_tension(const rod::Actuator& act, double elongation_m, double start_K, double lambda) {
-  const rod::Drive& drive = act.drive;
-  // Temperatures ramp from the material's reference temperature with the load factor.
-  std::vector<tca::Segment> segments = drive.segments;
+/// The segments of a TCA drive at load factor lambda: temperatures ramp from the material's
+/// reference temperature (start_K) with the load factor.
+std::vector<tca::Segment> ramped_segments(const rod::Actuator& act, double start_K, double lambda) {
+  std::vector<tca::Segment> segments = act.drive.segments;
   for (tca::Segment& seg : segments) seg.temperature_K = start_K + lambda * (seg.temperature_K - start_K);
-  if (segments.size() == 1) {
-    const tca::TensionState t = drive.tca->tension(elongation_m, segments[0].temperature_K);
-    return {t.tension_N, t.dF_ddelta_N_m};
-  }
-  const tca::SeriesTensionState t = tca::series_tension(*drive.tca, elongation_m, segments);
-  return {t.tension_N, t.dF_ddelta_N_m};
+  return segments;
+}
+
+/// The TCA row of one string: phi(T, delta) with coil contact (tca::contact_residual), zero
+/// where the tension T and the elongation delta satisfy the TCA law.
+tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m,
+                             double start_K, double lambda) {
+  return tca::contact_residual(*act.drive.tca, tension_N, elongation_m,
+                               ramped_segments(act, start_K, lambda));
 }
 
 }  // namespace
@@ -212,8 +210,8 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   }
   const std::size_t k = tca_actuators_.size();
   if (k > 0) {
-    // Newton on g_i = T_i - F_tca(l_i(T) - rest_i), l_i = L |nu + omega x r_i| (exact for
-    // constant strains and straight strings).
+    // Newton on g_i = phi_i(T_i, l_i(T) - rest_i) (the TCA law with coil contact),
+    // l_i = L |nu + omega x r_i| (exact for constant strains and straight strings).
     constexpr int kMaxTensionIterations = 30;
     constexpr double kTensionTolerance = 1e-13;  // relative: far below the FE's own tolerance
     try {
@@ -221,24 +219,25 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
         Vector3d nu, omega;
         strains(T, nu, omega);
         Eigen::VectorXd g(k);
-        Eigen::MatrixXd J = Eigen::MatrixXd::Identity(k, k);
+        Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k);
         double size = 0.0;
         for (std::size_t a = 0; a < k; ++a) {
           const int i = tca_actuators_[a];
           const rod::Actuator& act = model.actuators[i];
           const Vector3d q = nu + omega.cross(r[i]);
           const Vector3d qh = q.normalized();
-          const TcaTension f =
-              tca_tension(act, model.length_m * q.norm() - act.rest_length_m, start_temperature_K_[i], lambda);
-          g[a] = T[i] - f.tension_N;
-          size = std::max(size, std::abs(f.tension_N));
+          const tca::ContactResidual f = tca_row(act, T[i], model.length_m * q.norm() - act.rest_length_m,
+                                                 start_temperature_K_[i], lambda);
+          g[a] = f.phi_N;
+          J(a, a) = f.dphi_dF;
+          size = std::max(size, std::abs(T[i] - f.phi_N));
           for (std::size_t b = 0; b < k; ++b) {
             const int j = tca_actuators_[b];
             const double c = model.actuators[j].count;
             const Vector3d dnu(0.0, 0.0, -c / Kn.z());
             const Vector3d domega(-c * r[j].y() / Ko.x(), c * r[j].x() / Ko.y(), 0.0);
             const double dl = model.length_m * qh.dot(dnu + domega.cross(r[i]));
-            J(a, b) -= f.dF_ddelta_N_m * dl;
+            J(a, b) += f.dphi_ddelta_N_m * dl;
           }
         }
         const Eigen::VectorXd dT = J.partialPivLu().solve(-g);
@@ -463,22 +462,23 @@ VectorXd Discretization::residual(const State& state, double lambda,
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) tangent->coeffRef(tip_rot + i, tip_rot + j) += Km(i, j);
   }
-  // TCA rows: T_i - F_tca(l_i - rest_i); columns: c_i dl_i/dq.
+  // TCA rows: phi_i(T_i, l_i - rest_i) (tca::contact_residual: T_i - F_tca with coil
+  // contact); columns: c_i dl_i/dq.
   const std::size_t stride = 2 * static_cast<std::size_t>(free_dofs) + 1;
   for (std::size_t j = 0; j < tca_actuators_.size(); ++j) {
     const int a = tca_actuators_[j];
     const rod::Actuator& act = model.actuators[a];
     const int row = free_dofs + static_cast<int>(j);
-    const TcaTension f =
-        tca_tension(act, lengths[a] - act.rest_length_m, start_temperature_K_[a], lambda);
-    r[row] = state.tensions_N[a] - f.tension_N;
+    const tca::ContactResidual f = tca_row(act, state.tensions_N[a], lengths[a] - act.rest_length_m,
+                                           start_temperature_K_[a], lambda);
+    r[row] = f.phi_N;
     if (!tangent) continue;
     const int* slots = &tca_slots_[j * stride];
     for (int k = 0; k < free_dofs; ++k) {
-      values[slots[k]] += -f.dF_ddelta_N_m * dl[a][k];
+      values[slots[k]] += f.dphi_ddelta_N_m * dl[a][k];
       values[slots[free_dofs + k]] += act.count * dl[a][k];
     }
-    values[slots[2 * free_dofs]] += 1.0;
+    values[slots[2 * free_dofs]] += f.dphi_dF;
   }
   // Tip constraint (Lagrange multipliers = reaction components F_j along c_j): the holder's
   // force F = sum_j F_j c_j acts on the tip node (r = internal - external - F), and each

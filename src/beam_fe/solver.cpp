@@ -348,10 +348,13 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
   const Discretization disc(model, options);
   const std::vector<double> lengths = disc.string_lengths(state);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
-    res.actuators.push_back(
-        {model.actuators[i].name, state.tensions_N[i], lengths[i] - model.actuators[i].rest_length_m});
+    rod::ActuatorResult a;
+    a.name = model.actuators[i].name;
+    a.tension_N = state.tensions_N[i];
+    a.elongation_m = lengths[i] - model.actuators[i].rest_length_m;
+    rod::set_coil_contacts(model.actuators[i], model.actuators[i].drive.segments, a);
+    res.actuators.push_back(std::move(a));
   }
-  rod::flag_closed_coils(model, res);
   if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;
   res.centerline_s_m = state.s_m;
   res.centerline_p_W_m = state.p_W_m;

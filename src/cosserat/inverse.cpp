@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -51,6 +52,9 @@ constexpr int kTrustTrials = 30;
 /// Bracketed root finding on temperature (grasp cross-check): stop when the bracket is
 /// below this [K] (well under the 0.01 degC agreement the validation asks for).
 constexpr double kRootTolerance_K = 1e-8;
+/// A closed TCA is moved this far above its coil-opening temperature [K] (see
+/// opening_temperature): well above the onset's root tolerance, and a negligible actuation.
+constexpr double kOpeningMargin_K = 1e-6;
 
 bool is_tca(const rod::RodModel& m, int i) {
   return m.actuators[i].drive.type == rod::Drive::Type::kTca;
@@ -92,16 +96,34 @@ Eigen::Matrix<double, 6, 1> pose_difference(const Eigen::VectorXd& ya, const Eig
   return d;
 }
 
-/// dF/dT of actuator i's TCA at elongation delta for a uniform shift of its segment
-/// temperatures [N/K].
-double tca_dF_dT(const rod::RodModel& m, const Actuation& a, int i, double delta_m) {
+/// d phi / dT of actuator i's TCA row (tca::contact_residual, the TCA law with coil contact)
+/// at tension T and elongation delta for a uniform shift of its segment temperatures [N/K]:
+/// -dF/dT while the coils are open, 0 while they are closed.
+double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double tension_N,
+                   double delta_m) {
+  return tca::contact_residual(*m.actuators[i].drive.tca, tension_N, delta_m, a.actuators[i].segments)
+      .dphi_dT_N_K;
+}
+
+/// A TCA whose coils are all closed in the solved state (tension x[u]) carries whatever
+/// strut force equilibrium needs: the rod does not change with its temperature up to the
+/// onset, where the coils open under that force (Tca::onset_temperature). Returns the
+/// temperature just above that onset (the same state, now with a temperature sensitivity) if
+/// it lies below t_hi_K; none for an open TCA, a tension drive or an onset out of range.
+std::optional<double> opening_temperature(const rod::RodModel& m, const Actuation& a, int i,
+                                          const Solution& solution, double t_hi_K) {
+  if (!is_tca(m, i)) return std::nullopt;
   const tca::Tca& tca = *m.actuators[i].drive.tca;
+  const double tension_N = solution.unknowns[unknown_index(m, i)];
   const auto& segs = a.actuators[i].segments;
-  if (segs.size() == 1) return tca.tension(delta_m, segs[0].temperature_K).dF_dT_N_K;
-  const tca::SeriesTensionState s = tca::series_tension(tca, delta_m, segs);
-  double sum = 0.0;
-  for (double d : s.dF_dT_N_K) sum += d;
-  return sum;
+  for (const tca::SegmentContact& c : tca::segment_contacts(tca, tension_N, segs)) {
+    if (!c.coils_closed) return std::nullopt;
+  }
+  const double t_K = segs.front().temperature_K;
+  if (t_K >= t_hi_K) return std::nullopt;
+  const std::optional<double> onset = tca.onset_temperature(tension_N, t_K, t_hi_K);
+  if (!onset || *onset + kOpeningMargin_K >= t_hi_K) return std::nullopt;
+  return *onset + kOpeningMargin_K;
 }
 
 double variable_scale(const rod::RodModel& m, int i, double v, double Fc) {
@@ -151,13 +173,14 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
       const Eigen::Map<const Mat3> dR(dy.col(j).data() + kR);
       Eu.block<3, 1>(3, j) = skew_vee(dR * R0.transpose());
     }
-    // Temperatures enter only the TCA residual r_k = (T_k - F(delta_k, temps)) / F_c.
+    // Temperatures enter only the TCA residual r_k = phi(T_k, delta_k, temps) / F_c.
     Eq.setZero();
     Bq.setZero();
     for (int k = 0; k < nq; ++k) {
       const int i = variables[k];
       if (is_tca(model, i)) {
-        Bq(unknown_index(model, i), k) = -tca_dF_dT(model, actuation, i, y0[kDelta + i]) / Fc;
+        const int u = unknown_index(model, i);
+        Bq(u, k) = tca_dphi_dT(model, actuation, i, x[u], y0[kDelta + i]) / Fc;
         continue;
       }
       // A tension drive enters the IVP: central differences (two IVPs).
@@ -413,7 +436,30 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
   }
   double radius = kTrustStart;
   TipDerivatives d;
+  // A TCA with closed coils has no temperature sensitivity (a zero column of J) until its
+  // coils open, and every temperature up to that onset gives the same state: such a TCA is
+  // moved to its opening temperature, which is also its lower bound for this step.
+  Eigen::VectorXd lo_step = lo;
   for (int it = 0;; ++it) {
+    lo_step = lo;
+    bool moved = false;
+    for (int k = 0; k < nq; ++k) {
+      const std::optional<double> t_open = opening_temperature(model, actuation, vars[k], solution, hi[k]);
+      if (!t_open) continue;
+      q[k] = std::max(q[k], *t_open);
+      lo_step[k] = q[k];
+      set_variable(model, actuation, vars[k], q[k]);
+      moved = true;
+    }
+    if (moved) {
+      ++res.forward_solves;
+      s = solver.solve(actuation, solution);
+      if (!s.converged()) {
+        return finish(InverseResult::Status::kForwardFailed,
+                      std::string("forward solve at the coil-opening temperature failed: ") + s.message,
+                      solution.tip_state);
+      }
+    }
     if (!tip_derivatives(solver, model, actuation, solution, vars, options.method, d)) {
       return finish(InverseResult::Status::kForwardFailed, "tip Jacobian evaluation failed",
                     solution.tip_state);
@@ -432,7 +478,7 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
     // descent direction points out of the box is held.
     Eigen::VectorXd g = A.transpose() * e;
     for (int k = 0; k < nq; ++k) {
-      if ((q[k] >= hi[k] && g[k] > 0.0) || (q[k] <= lo[k] && g[k] < 0.0)) g[k] = 0.0;
+      if ((q[k] >= hi[k] && g[k] > 0.0) || (q[k] <= lo_step[k] && g[k] < 0.0)) g[k] = 0.0;
     }
     if (g.norm() <= kStationarity * A.norm() * err) {
       return finish(InverseResult::Status::kUnreachable,
@@ -455,7 +501,7 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
     for (int trial = 0; trial < kTrustTrials && !accepted; ++trial) {
       // [Pawlowski2019] Eq. (40) with dW = 0: e = J dq, solved in the bounded (minimum-norm)
       // least-squares sense, then shortened to the trust radius.
-      Eigen::VectorXd dq = bounded_step(A, e, 0.0, D, q, lo, hi);
+      Eigen::VectorXd dq = bounded_step(A, e, 0.0, D, q, lo_step, hi);
       const double size = (dq.array().abs() / scale.array()).maxCoeff();
       if (size <= kNilStep) break;
       const bool truncated = size > radius;
@@ -580,6 +626,14 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
     if (!tip_derivatives(fs, free, a, sol, {act}, options.method, d)) {
       why = "tip Jacobian evaluation failed";
       break;
+    }
+    // Closed coils: no temperature sensitivity until they open (J_n = 0); move to the
+    // opening temperature, which leaves the loaded finger where it is.
+    if (const std::optional<double> t_open = opening_temperature(free, a, act, sol, t_hi)) {
+      T = *t_open;
+      a.set_temperature_K(static_cast<std::size_t>(act), T);
+      res.iterations = it + 1;
+      continue;
     }
     const double x = n.dot(d.tip_state.segment<3>(kP));
     const double Jn = n.dot(d.J.block<3, 1>(0, 0));                  // dx/dT

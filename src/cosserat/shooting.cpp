@@ -289,7 +289,10 @@ struct ShootingSolver::Impl {
   LieGroupRk4* active_lie_plain = nullptr;
   LieGroupRk4* active_lie_sens = nullptr;
   Eigen::VectorXd Y;                // augmented state
-  std::vector<double> dF_ddelta;    // per actuator, at the last tip residual (TCA drives)
+  // Per actuator, at the last tip residual (TCA drives): the derivatives of the contact
+  // residual phi(T, delta) (tca::contact_residual); the TCA row is phi / F_c.
+  std::vector<double> dphi_dT;
+  std::vector<double> dphi_ddelta;
 
   int n_act = 0;
   int n_tca = 0;
@@ -325,7 +328,7 @@ struct ShootingSolver::Impl {
   // whose actuation changed only temperatures or tip loads (they enter the tip residual only).
   bool memo_valid = false;
   std::vector<double> acc_cT;
-  std::vector<double> acc_dF;  // dF/d delta at the accepted point (under its actuation)
+  std::vector<double> acc_dphi_dT, acc_dphi_ddelta;  // at the accepted point (its actuation)
   Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
   int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
   Vec3 acc_f_ext = Vec3::Zero();
@@ -392,7 +395,8 @@ struct ShootingSolver::Impl {
       rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
     }
     cache.resize(n_act);
-    dF_ddelta.assign(n_act, 0.0);
+    dphi_dT.assign(n_act, 0.0);
+    dphi_ddelta.assign(n_act, 0.0);
     if (options.jacobian == JacobianMethod::kSensitivity && nx > kMaxSensitivityUnknowns) {
       options.jacobian = JacobianMethod::kForwardDifference;
     }
@@ -693,47 +697,29 @@ struct ShootingSolver::Impl {
     y0.segment<3>(kOmega) = x.segment<3>(3);
   }
 
-  /// TCA tension at elongation delta with the (scaled) segments.
-  static double tca_force(const tca::Tca& tca, double delta, const std::vector<tca::Segment>& segs,
-                          bool* below_closed, double* dF) {
-    if (segs.size() == 1) {
-      const tca::TensionState ts = tca.tension(delta, segs[0].temperature_K);
-      if (below_closed) *below_closed = ts.below_closed_length;
-      *dF = ts.dF_ddelta_N_m;
-      return ts.tension_N;
-    }
-    if (below_closed) {
-      *below_closed = tca.parameters().kind == tca::Kind::kExtension && delta < 0.0;
-    }
-    const tca::SeriesTensionState ts = tca::series_tension(tca, delta, segs);
-    *dF = ts.dF_ddelta_N_m;
-    return ts.tension_N;
-  }
-
   /// Scaled residual at x; y(L) left in `y`. False when the IVP or a TCA law fails.
-  bool residual(const Actuation& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r,
-                bool* below_closed = nullptr) {
+  bool residual(const Actuation& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
     if (!all_finite(x)) return false;
     set_parameters(act, lambda, x);
     if (memo_valid && acc_level == active_plain && x_acc.size() == x.size() && x_acc == x &&
         acc_cT == cT && acc_f_ext == f_ext_W) {
       y = y_acc;  // same IVP as the last accepted one: no integration
-      return tip_residual(act, lambda, x, y, r, below_closed);
+      return tip_residual(act, lambda, x, y, r);
     }
     initial_state(x, y);
     ++ivp_count;
     if (active_lie_plain) {
       if (!active_lie_plain->integrate(rhs, 0.0, L, y) || !all_finite(y)) return false;
-      return tip_residual(act, lambda, x, y, r, below_closed);
+      return tip_residual(act, lambda, x, y, r);
     }
     const ode::IntegrationSummary is = active_plain->integrate(rhs, 0.0, L, y);
     if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(y)) return false;
-    return tip_residual(act, lambda, x, y, r, below_closed);
+    return tip_residual(act, lambda, x, y, r);
   }
 
   /// Residual and its exact Jacobian from one augmented IVP (kSensitivity).
   bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
-                             Eigen::VectorXd& r, Eigen::MatrixXd& J, bool* below_closed = nullptr) {
+                             Eigen::VectorXd& r, Eigen::MatrixXd& J) {
     if (!all_finite(x)) return false;
     set_parameters(act, lambda, x);
     Y.setZero();
@@ -749,7 +735,7 @@ struct ShootingSolver::Impl {
       if (is.status != ode::IntegrationSummary::Status::kSuccess || !all_finite(Y)) return false;
     }
     y = Y.head(dim);
-    if (!tip_residual(act, lambda, x, y, r, below_closed)) return false;
+    if (!tip_residual(act, lambda, x, y, r)) return false;
     J.resize(nx, nx);
     if (planar) return planar_jacobian(act, lambda, J);
     // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
@@ -783,7 +769,7 @@ struct ShootingSolver::Impl {
       for (int i = 0; i < n_act; ++i) {
         const int k = unknown_of[i];
         if (k < 0) continue;
-        J(k, j) = ((k == j ? 1.0 : 0.0) - dF_ddelta[i] * yj[kDelta + i]) / Fc;
+        J(k, j) = ((k == j ? dphi_dT[i] : 0.0) + dphi_ddelta[i] * yj[kDelta + i]) / Fc;
       }
       if (n_con == 3) J.block<3, 1>(k_con, j) = Vec3(yj + kP) / L;
       if (n_con == 1) J(k_con, j) = con_normal_W.dot(Vec3(yj + kP)) / L;
@@ -804,7 +790,7 @@ struct ShootingSolver::Impl {
       const double* yj = Y.data() + dim * (j + 1);
       for (int i = 0; i < n_act; ++i) {
         const int k = unknown_of[i];
-        if (k >= 0) J(k, j) = ((k == j ? 1.0 : 0.0) - dF_ddelta[i] * yj[planar::kDelta + i]) / Fc;
+        if (k >= 0) J(k, j) = ((k == j ? dphi_dT[i] : 0.0) + dphi_ddelta[i] * yj[planar::kDelta + i]) / Fc;
       }
     }
     return J.allFinite();
@@ -812,7 +798,7 @@ struct ShootingSolver::Impl {
 
   // docs/conventions.md "Tip conditions" (body frame), scaled.
   bool tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
-                    const Eigen::VectorXd& yL, Eigen::VectorXd& r, bool* below_closed) {
+                    const Eigen::VectorXd& yL, Eigen::VectorXd& r) {
     r.resize(nx);
     if (planar) {
       // The in-plane rows (force x, z; moment y) of the 3-D residual; the others are zero.
@@ -823,7 +809,7 @@ struct ShootingSolver::Impl {
       r[0] = w[0] / Fc;
       r[1] = w[1] / Fc;
       r[2] = w[2] / (Fc * L);
-      return tca_rows(x, yL, planar::kDelta, r, below_closed);
+      return tca_rows(x, yL, planar::kDelta, r);
     }
     const Eigen::Map<const Mat3> R(yL.data() + kR);
     const Vec3 nu = yL.segment<3>(kNu);
@@ -845,27 +831,25 @@ struct ShootingSolver::Impl {
     // Tip constraint: position error (pinned) or its normal component, scaled by L.
     if (n_con == 3) r.segment<3>(k_con) = (yL.segment<3>(kP) - con_target_W) / L;
     if (n_con == 1) r[k_con] = con_normal_W.dot(yL.segment<3>(kP) - con_target_W) / L;
-    return tca_rows(x, yL, kDelta, r, below_closed);
+    return tca_rows(x, yL, kDelta, r);
   }
 
-  /// TCA rows r_k = (T_k - F_tca(delta_k(L))) / F_c with delta at yL[delta0 + i]; sets
-  /// dF_ddelta. False when a TCA law fails or r is not finite.
-  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0,
-                Eigen::VectorXd& r, bool* below_closed) {
-    if (below_closed) *below_closed = false;
+  /// TCA rows r_k = phi(T_k, delta_k(L)) / F_c (tca::contact_residual: the free-coil law
+  /// T_k - F_tca(delta_k) with coil contact) with delta at yL[delta0 + i]; sets dphi_dT and
+  /// dphi_ddelta. False when a TCA law fails or r is not finite.
+  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0, Eigen::VectorXd& r) {
     for (int i = 0; i < n_act; ++i) {
       const int k = unknown_of[i];
       if (k < 0) continue;
-      bool bc = false;
-      double F = 0.0;
       try {
-        F = tca_force(*model.actuators[i].drive.tca, yL[delta0 + i], scaled_segments[i], &bc,
-                      &dF_ddelta[i]);
+        const tca::ContactResidual c = tca::contact_residual(
+            *model.actuators[i].drive.tca, x[k], yL[delta0 + i], scaled_segments[i]);
+        r[k] = c.phi_N / Fc;
+        dphi_dT[i] = c.dphi_dF;
+        dphi_ddelta[i] = c.dphi_ddelta_N_m;
       } catch (const DomainError&) {
         return false;
       }
-      if (below_closed && bc) *below_closed = true;
-      r[k] = (x[k] - F) / Fc;
     }
     return all_finite(r);
   }
@@ -1026,7 +1010,8 @@ struct ShootingSolver::Impl {
     Vec3 nu, omega;
     Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
     Eigen::MatrixXd G(n_tca, n_tca);
-    // Residuals g_k = T_k - F_k(delta_k(T)) of the closed-form model; F may throw.
+    // Residuals g_k = phi_k(T_k, delta_k(T)) of the closed-form model (the TCA law with coil
+    // contact, tca::contact_residual); it may throw.
     auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
       for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
       closed_form_strains(cTs, nu, omega);
@@ -1037,10 +1022,9 @@ struct ShootingSolver::Impl {
         const rod::Routing& ro = model.actuators[i].routing;
         const double delta =
             L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
-        double dF = 0.0;
-        const double F =
-            tca_force(*model.actuators[i].drive.tca, delta, scaled_segments[i], nullptr, &dF);
-        gk[k] = Tk[k] - F;
+        const tca::ContactResidual c =
+            tca::contact_residual(*model.actuators[i].drive.tca, Tk[k], delta, scaled_segments[i]);
+        gk[k] = c.phi_N;
         if (Gk) {
           const Vec3 ri = ro.r(0.0);
           for (int l = 0; l < n_tca; ++l) {
@@ -1048,7 +1032,7 @@ struct ShootingSolver::Impl {
             // d delta_k / d T_l = -L C_kl c_l (closed form)
             const double C = 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
                              ri.x() * rl.x() / K_omega.y();
-            (*Gk)(k, l) = (k == l ? 1.0 : 0.0) + dF * L * C * count[act_of[l]];
+            (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) - c.dphi_ddelta_N_m * L * C * count[act_of[l]];
           }
         }
       }
@@ -1094,8 +1078,7 @@ struct ShootingSolver::Impl {
                          Eigen::MatrixXd& J, Summary& summary, std::string& why,
                          double tolerance) {
     Eigen::VectorXd r(nx), xt(nx), rt(nx), dx(nx);
-    bool below = false;
-    if (!residual(act, lambda, x, r, &below)) {
+    if (!residual(act, lambda, x, r)) {
       why = "the IVP or a TCA law failed at the initial guess";
       return Summary::Status::kInitialPointFailed;
     }
@@ -1104,7 +1087,6 @@ struct ShootingSolver::Impl {
     if (J.rows() != nx || J.cols() != nx) J.resize(0, 0);
     for (int it = 0;; ++it) {
       summary.residual = r.lpNorm<Eigen::Infinity>();
-      summary.tca_below_closed_length = below;
       if (summary.residual <= tolerance) return Summary::Status::kConverged;
       if (it >= options.max_iterations) {
         why = "reached max_iterations = " + std::to_string(options.max_iterations) +
@@ -1136,11 +1118,9 @@ struct ShootingSolver::Impl {
       const int max_ls = fresh ? options.max_line_search_steps : kStaleLineSearchSteps;
       for (int ls = 0; ls < max_ls; ++ls, t *= 0.5) {
         xt = x + t * dx;
-        bool bt = false;
-        if (residual(act, lambda, xt, rt, &bt) &&
+        if (residual(act, lambda, xt, rt) &&
             0.5 * rt.squaredNorm() <= (1.0 - 2.0 * kArmijo * t) * phi) {
           accepted = true;
-          below = bt;
           break;
         }
       }
@@ -1232,23 +1212,22 @@ struct ShootingSolver::Impl {
   }
 
   /// Warm start: the actuation change (temperatures) alters the TCA rows of the Jacobian
-  /// only through dF/d delta (the IVP does not depend on temperatures). Row k is
-  /// (e_k - dF/d delta ddelta/dx) / F_c, so its ddelta/dx part is rescaled by dF_new / dF_old
-  /// with dF_old of the previous solution and dF_new at the same point under `act` (the
-  /// residual there comes from the IVP memo, without integration).
+  /// only through the contact residual's derivatives (the IVP does not depend on
+  /// temperatures). Row k is (a e_k + b ddelta/dx) / F_c with a = dphi/dT_k, b = dphi/d delta,
+  /// so it is rebuilt from the previous solution's (a, b) and the new ones at the same point
+  /// under `act` (the residual there comes from the IVP memo, without integration).
   void refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
     if (n_tca == 0 || !memo_valid || x_acc.size() != x.size() || x_acc != x) return;
-    const std::vector<double> dF_old = acc_dF;
+    const std::vector<double> a_old = acc_dphi_dT, b_old = acc_dphi_ddelta;
     Eigen::VectorXd r;
     if (!residual(act, 1.0, x, r)) return;
     remember(1.0, x);  // Newton's first residual at x is then answered by the memo too
     for (int i = 0; i < n_act; ++i) {
       const int k = unknown_of[i];
-      if (k < 0 || dF_old[i] == 0.0 || !std::isfinite(dF_ddelta[i])) continue;
-      const double ratio = dF_ddelta[i] / dF_old[i];
-      J(k, k) -= 1.0 / Fc;
-      J.row(k) *= ratio;
-      J(k, k) += 1.0 / Fc;
+      if (k < 0 || b_old[i] == 0.0 || !std::isfinite(dphi_ddelta[i])) continue;
+      J(k, k) -= a_old[i] / Fc;
+      J.row(k) *= dphi_ddelta[i] / b_old[i];
+      J(k, k) += dphi_dT[i] / Fc;
     }
   }
 
@@ -1331,7 +1310,8 @@ struct ShootingSolver::Impl {
     memo_valid = y.allFinite();
     acc_cT = cT;
     acc_f_ext = f_ext_W;
-    acc_dF = dF_ddelta;
+    acc_dphi_dT = dphi_dT;
+    acc_dphi_ddelta = dphi_ddelta;
     acc_level = active_plain;
     y_acc = y;
     x_acc = x;
@@ -1661,8 +1641,8 @@ struct ShootingSolver::Impl {
     for (int i = 0; i < n_act; ++i) {
       res.actuators[i].tension_N = cT[i] / count[i];
       res.actuators[i].elongation_m = y[kDelta + i];
+      rod::set_coil_contacts(model.actuators[i], act.actuators[i].segments, res.actuators[i]);
     }
-    rod::flag_closed_coils(model, res);
     try {
       res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
                                                            res.centerline_p_W_m, res.centerline_R_WB);

@@ -17,7 +17,8 @@
 /// Residual r(x) (docs/conventions.md "Tip conditions"), scaled:
 ///   r[0:3] = ( K_nu (nu(L) - nu*) - R^T F_e + sum c_i T_i qh_i ) / F_c
 ///   r[3:6] = ( K_omega (omega(L) - omega*) - R^T M_e + sum c_i T_i r_i x qh_i ) / (F_c L)
-///   r[6+k] = ( T_k - F_tca(delta_k(L), temperatures_k) ) / F_c
+///   r[6+k] = phi_k( T_k, delta_k(L) ) / F_c, phi_k = T_k - F_tca(delta_k(L), temperatures_k)
+///            with coil contact (tca::contact_residual; docs/conventions.md "Closed coils")
 /// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, kStiffnessFloor max(GA, EA))
 /// (see shooting.cpp for the floor's reason). Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
@@ -166,9 +167,6 @@ struct Summary {
   /// (gravity, tip wrench, string terminations) require [N], [N m], world frame.
   Eigen::Vector3d force_imbalance_W_N = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_imbalance_W_Nm = Eigen::Vector3d::Zero();
-  /// True if an extension TCA ended below its closed length (delta < 0): the free-coil
-  /// law was extrapolated there (coil contact is not modelled by this solver).
-  bool tca_below_closed_length = false;
   /// True if the solve ran in the plane (Options::planar_reduction).
   bool planar = false;
 

@@ -14,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "common/so3.hpp"
+#include "common/units.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -124,7 +125,23 @@ nlohmann::json to_json(const Result& result) {
     json entry = {{"name", a.name},
                   {"tension_N", w.number(a.tension_N, field + ".tension_N")},
                   {"elongation_m", w.number(a.elongation_m, field + ".elongation_m")}};
-    if (a.below_closed_length) entry["below_closed_length"] = true;
+    if (a.is_tca) {
+      entry["coils_closed"] = a.coils_closed;
+      entry["contact_force_N"] = w.number(a.contact_force_N, field + ".contact_force_N");
+    }
+    if (!a.segments.empty()) {
+      json segs = json::array();
+      for (std::size_t k = 0; k < a.segments.size(); ++k) {
+        const auto& [seg, contact] = a.segments[k];
+        const std::string sf = fmt::format("{}.segments[{}]", field, k);
+        segs.push_back({{"fraction", w.number(seg.fraction, sf + ".fraction")},
+                        {"temperature_degC", w.number(units::K_to_degC(seg.temperature_K),
+                                                      sf + ".temperature_degC")},
+                        {"coils_closed", contact.coils_closed},
+                        {"contact_force_N", w.number(contact.contact_force_N, sf + ".contact_force_N")}});
+      }
+      entry["segments"] = segs;
+    }
     actuators.push_back(std::move(entry));
   }
   j["actuators"] = actuators;
@@ -164,20 +181,21 @@ nlohmann::json to_json(const Result& result) {
   return j;
 }
 
-void flag_closed_coils(const RodModel& model, Result& result) {
-  for (std::size_t i = 0; i < model.actuators.size() && i < result.actuators.size(); ++i) {
-    const Drive& d = model.actuators[i].drive;
-    if (d.type != Drive::Type::kTca || !d.tca || d.tca->parameters().kind != tca::Kind::kExtension) continue;
-    bool below = false;
-    for (const tca::Segment& seg : d.segments) {
-      try {
-        below = below || seg.fraction * d.tca->free_coil_elongation(result.actuators[i].tension_N,
-                                                                     seg.temperature_K).elongation_m < 0.0;
-      } catch (const DomainError&) {
-        below = true;  // no free-coil state carries this tension: certainly not an open coil
-      }
-    }
-    result.actuators[i].below_closed_length = below;
+void set_coil_contacts(const Actuator& actuator, const std::vector<tca::Segment>& segments,
+                       ActuatorResult& out) {
+  const Drive& d = actuator.drive;
+  if (d.type != Drive::Type::kTca || !d.tca) return;
+  out.is_tca = true;
+  const std::vector<tca::SegmentContact> c = tca::segment_contacts(*d.tca, out.tension_N, segments);
+  out.coils_closed = false;
+  out.contact_force_N = 0.0;
+  for (const tca::SegmentContact& ck : c) {
+    out.coils_closed = out.coils_closed || ck.coils_closed;
+    out.contact_force_N = std::max(out.contact_force_N, ck.contact_force_N);
+  }
+  out.segments.clear();
+  if (d.segmented) {
+    for (std::size_t k = 0; k < segments.size(); ++k) out.segments.emplace_back(segments[k], c[k]);
   }
 }
 

@@ -13,12 +13,20 @@ namespace tcasim::rod {
 
 /// State of one actuator in a solution (per string: a `count` of 2 has this tension in each).
 struct ActuatorResult {
+  ActuatorResult() = default;
+  ActuatorResult(std::string name_, double tension, double elongation)
+      : name(std::move(name_)), tension_N(tension), elongation_m(elongation) {}
   std::string name;
   double tension_N = 0.0;     ///< tension of one string (positive = tensile)
   double elongation_m = 0.0;  ///< current length minus rest length of one string
-  /// An extension TCA (or one of its segments) is below its closed length: the solvers use
-  /// the free-coil law there, while the real coils would be in contact (see flag_closed_coils).
-  bool below_closed_length = false;
+  /// TCA drives: coil contact in the solved state (set_coil_contacts). True when the TCA, or
+  /// any segment of a segmented one, sits at its closed length held by coil contact.
+  bool coils_closed = false;
+  /// The contact force of the closed coils [N] (>= 0; the largest over the segments).
+  double contact_force_N = 0.0;
+  bool is_tca = false;  ///< a TCA drive: the contact fields are written
+  /// Segmented TCA drives: each segment's temperature [K] and contact state, base to tip.
+  std::vector<std::pair<tca::Segment, tca::SegmentContact>> segments;
 };
 
 /// One solve's outcome, as written to a result file.
@@ -49,10 +57,11 @@ struct Result {
 /// turned into converged = false with a message naming the field.
 nlohmann::json to_json(const Result& result);
 
-/// Sets ActuatorResult::below_closed_length for every extension-TCA actuator whose tension
-/// gives a negative free-coil elongation in any segment (delta_k = f_k delta(T, T_k) < 0).
-/// Both solvers call it when they fill a result.
-void flag_closed_coils(const RodModel& model, Result& result);
+/// Fills the coil-contact fields of `out` for a TCA-driven actuator from its solved tension
+/// (out.tension_N) and the segment temperatures the solve used (tca::segment_contacts); does
+/// nothing for a tension drive. Both solvers call it when they fill a result.
+void set_coil_contacts(const Actuator& actuator, const std::vector<tca::Segment>& segments,
+                       ActuatorResult& out);
 
 /// JSON text with objects indented by two spaces per level and every array of scalars
 /// (numbers, strings, booleans, nulls) on one line, e.g. a position [x, y, z], so a

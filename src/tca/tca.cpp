@@ -179,8 +179,11 @@ Tca::Tca(const Parameters& parameters, Material material)
           fmt::format("[{}, {}]", degC(material_.min_temperature_K),
                       degC(material_.max_temperature_K)),
           "must have lo < hi");
+  const double t_ref_K = std::clamp(material_.reference_temperature_K, material_.min_temperature_K,
+                                    material_.max_temperature_K);
   try {
     (void)material_.at(material_.reference_temperature_K);
+    contact_stiffness_ = std::abs(tension(0.0, t_ref_K).dF_ddelta_N_m);
   } catch (const DomainError& e) {
     throw InputError("material", material_.name,
                      std::string("is invalid at its reference temperature: ") + e.what());
@@ -382,6 +385,54 @@ SeriesTensionState series_tension(const Tca& tca, double elongation_m,
   for (std::size_t k = 0; k < segments.size(); ++k) {
     out.dF_dT_N_K[k] = segments[k].fraction * states[k].dF_dT_N_K / states[k].dF_ddelta_N_m *
                        out.dF_ddelta_N_m;
+  }
+  return out;
+}
+
+ContactResidual contact_residual(const Tca& tca, double tension_N, double elongation_m,
+                                 const std::vector<Segment>& segments) {
+  const double kc = tca.contact_stiffness_N_m();
+  const bool contact = tca.has_coil_contact();
+  ContactResidual out{};
+  if (segments.size() == 1) {
+    const double t_K = segments[0].temperature_K;
+    if (!contact || elongation_m >= 0.0) {
+      const TensionState ts = tca.tension(elongation_m, t_K);
+      out = {tension_N - ts.tension_N, 1.0, -ts.dF_ddelta_N_m, -ts.dF_dT_N_K};
+    } else {
+      // No free-coil state below the closed length: F_free continued from delta = 0 with the
+      // slope k_c (temperature independent, so d phi/dT stays -dF_b/dT).
+      const TensionState t0 = tca.tension(0.0, t_K);
+      out = {tension_N - t0.tension_N - kc * elongation_m, 1.0, -kc, -t0.dF_dT_N_K};
+    }
+    // Closed branch -k_c delta where it is the larger: coil contact holds delta at 0.
+    if (contact && -kc * elongation_m > out.phi_N) out = {-kc * elongation_m, 0.0, -kc, 0.0};
+    return out;
+  }
+  check_segments(segments);
+  // phi = k_c (sum_k f_k max(0, e_k) - delta), e_k = e(F, T_k); a segment is closed (e_k <= 0)
+  // exactly when F <= F_b(T_k), which needs no root finding.
+  double sum = 0.0, de_dF = 0.0, de_dT = 0.0;
+  for (const Segment& s : segments) {
+    if (contact && tension_N <= tca.blocked_force(s.temperature_K)) continue;
+    const double e = tca.free_coil_elongation(tension_N, s.temperature_K).elongation_m;
+    const TensionState ts = tca.tension(e, s.temperature_K);
+    sum += s.fraction * e;
+    // de/dF = 1 / (dF/d delta); de/dT = -(dF/dT) / (dF/d delta).
+    de_dF += s.fraction / ts.dF_ddelta_N_m;
+    de_dT -= s.fraction * ts.dF_dT_N_K / ts.dF_ddelta_N_m;
+  }
+  out = {kc * (sum - elongation_m), kc * de_dF, -kc, kc * de_dT};
+  return out;
+}
+
+std::vector<SegmentContact> segment_contacts(const Tca& tca, double tension_N,
+                                             const std::vector<Segment>& segments) {
+  std::vector<SegmentContact> out(segments.size());
+  if (!tca.has_coil_contact()) return out;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double c = tca.blocked_force(segments[k].temperature_K) - tension_N;
+    if (c > 0.0) out[k] = {true, c};
   }
   return out;
 }

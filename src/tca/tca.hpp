@@ -163,10 +163,20 @@ class Tca {
   /// Blocked force: the tension with the TCA held at its closed length (delta = 0).
   double blocked_force(double t_K) const { return tension(0.0, t_K).tension_N; }
 
+  /// True when coil contact bounds this TCA at its closed length (delta >= 0): extension
+  /// TCAs. A contraction TCA is modelled with open coils at L (docs/conventions.md "Closed
+  /// coils"): it is bounded only by the domain of Eq. (5), 0 < alpha < 90 deg.
+  bool has_coil_contact() const { return p_.kind == Kind::kExtension; }
+
+  /// k_c [N/m]: |dF/d delta| at delta = 0 and the material's reference temperature (clamped
+  /// to its valid range). Scales the closed-coil branch of contact_residual to force units.
+  double contact_stiffness_N_m() const { return contact_stiffness_; }
+
  private:
   Parameters p_;
   Material material_;
   double alpha0_ = 0, n_ = 0, phi0_ = 0, d0_ = 0;
+  double contact_stiffness_ = 0;
 };
 
 /// One segment of a TCA driven at its own temperature (segments in series, base to tip).
@@ -190,5 +200,41 @@ double series_elongation(const Tca& tca, double tension_N, const std::vector<Seg
 /// law in each segment), with consistent tangents. Bracketed root finding in F.
 SeriesTensionState series_tension(const Tca& tca, double elongation_m,
                                   const std::vector<Segment>& segments);
+
+/// The TCA law with coil contact as one equation between the shared tension F of the
+/// string and its total elongation delta (docs/conventions.md "Closed coils"). In each
+/// segment k of an extension TCA: delta_k >= 0, contact force c_k >= 0, c_k delta_k = 0 and
+/// F = F_free(delta_k / f_k, T_k) - c_k. Eliminating delta_k and c_k, phi(F, delta) = 0 holds
+/// exactly at those states:
+///   one segment:   phi = max(F - F_free(delta, T), -k_c delta)   (the min complementarity
+///                  function of (k_c delta, c) with c = F_free - F; for delta < 0, where no
+///                  free-coil state exists, F_free is continued as F_b(T) + k_c delta);
+///   k > 1 segments: phi = k_c (sum_k f_k max(0, e(F, T_k)) - delta), e the free-coil
+///                  elongation (Eqs. (2), (5)); the max is absent for a contraction TCA.
+/// phi is piecewise smooth (semismooth), so Newton with these derivatives converges
+/// quadratically; in force units [N]. One open segment gives phi = F - F_free(delta, T), the
+/// free-coil row of both rod solvers.
+struct ContactResidual {
+  double phi_N;            ///< phi(F, delta)
+  double dphi_dF;          ///< d phi / d F (1 for an open single segment, 0 when closed)
+  double dphi_ddelta_N_m;  ///< d phi / d delta
+  double dphi_dT_N_K;      ///< d phi / d T for one shift of every segment temperature
+};
+
+/// phi(F, delta) and its derivatives (see ContactResidual). Throws DomainError where the
+/// free-coil law has no state (pitch angle outside (0, 90 deg), temperature out of range).
+ContactResidual contact_residual(const Tca& tca, double tension_N, double elongation_m,
+                                 const std::vector<Segment>& segments);
+
+/// Coil contact of one segment in a solved state.
+struct SegmentContact {
+  bool coils_closed = false;     ///< the segment sits at its closed length, F < F_b(T_k)
+  double contact_force_N = 0.0;  ///< c_k = F_b(T_k) - F >= 0 when closed, else 0
+};
+
+/// The contact state of each segment at the shared tension F (extension TCAs; a
+/// contraction TCA's segments are always open). F_b is the blocked force.
+std::vector<SegmentContact> segment_contacts(const Tca& tca, double tension_N,
+                                             const std::vector<Segment>& segments);
 
 }  // namespace tcasim::tca

@@ -37,7 +37,13 @@ Result sample_result() {
   r.tip_position_W_m = {0.01, -0.002, 0.035};
   // Not symmetric, so a transposed writer fails.
   r.tip_R_WB = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  r.actuators = {{"tca", -0.0031, 0.0002}, {"tendon", 0.5, -1e-5}};
+  r.actuators.resize(2);
+  r.actuators[0].name = "tca";
+  r.actuators[0].tension_N = -0.0031;
+  r.actuators[0].elongation_m = 0.0002;
+  r.actuators[1].name = "tendon";
+  r.actuators[1].tension_N = 0.5;
+  r.actuators[1].elongation_m = -1e-5;
   r.bending_radius_m = 0.052;
   r.centerline_s_m = {0.0, 0.02, 0.04};
   r.centerline_p_W_m = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.001, 0, 0.02),
@@ -265,24 +271,67 @@ TEST(ThreePointRadius, StraightRodAndCustomSectionHaveNoRadius) {
 namespace tcasim::rod {
 namespace {
 
-TEST(FlagClosedCoils, MarksAnExtensionTcaPushedBelowItsClosedLengthAndWritesTheFlag) {
+TEST(SetCoilContacts, ClosedBelowTheBlockedForceWithItsContactForceAndWritesBoth) {
   const std::filesystem::path file =
       std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "square-manipulator.json";
   RodModel model = read_scenario(file.string());
   const Actuator& act = model.actuators.at(0);
   const double t_K = act.drive.segments.at(0).temperature_K;
-  // The free-coil elongation at this tension tells which side of the closed length it is.
-  const double closing_tension_N = act.drive.tca->blocked_force(t_K);  // delta = 0 exactly
+  const double blocked_N = act.drive.tca->blocked_force(t_K);  // F at delta = 0
+  ActuatorResult a;
+  a.name = act.name;
+  a.tension_N = blocked_N - 1e-3;
+  set_coil_contacts(act, act.drive.segments, a);
+  EXPECT_TRUE(a.coils_closed);
+  EXPECT_NEAR(a.contact_force_N, 1e-3, 1e-12);  // c = F_b - F
   Result result;
-  result.actuators.push_back({act.name, closing_tension_N - 1e-3, 0.0});
-  flag_closed_coils(model, result);
-  EXPECT_TRUE(result.actuators[0].below_closed_length);
-  EXPECT_EQ(to_json(result)["actuators"][0]["below_closed_length"], true);
+  result.actuators.push_back(a);
+  EXPECT_EQ(to_json(result)["actuators"][0]["coils_closed"], true);
+  EXPECT_NEAR(to_json(result)["actuators"][0]["contact_force_N"].get<double>(), 1e-3, 1e-12);
 
-  result.actuators[0].tension_N = closing_tension_N + 1e-3;
-  flag_closed_coils(model, result);
-  EXPECT_FALSE(result.actuators[0].below_closed_length);
-  EXPECT_FALSE(to_json(result)["actuators"][0].contains("below_closed_length"));
+  a.tension_N = blocked_N + 1e-3;
+  set_coil_contacts(act, act.drive.segments, a);
+  EXPECT_FALSE(a.coils_closed);
+  EXPECT_EQ(a.contact_force_N, 0.0);
+  result.actuators[0] = a;
+  EXPECT_EQ(to_json(result)["actuators"][0]["coils_closed"], false);
+}
+
+TEST(SetCoilContacts, SegmentedTcaReportsEachSegmentAndTensionDrivesNothing) {
+  const std::filesystem::path file =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "segmented-tca.json";
+  RodModel model = read_scenario(file.string());
+  const Actuator& act = model.actuators.at(0);
+  ASSERT_TRUE(act.drive.segmented);
+  ASSERT_GE(act.drive.segments.size(), 2u);
+  std::vector<tca::Segment> segs = act.drive.segments;
+  segs[0].temperature_K = 298.15;  // cold: high blocked force
+  segs[1].temperature_K = 403.15;  // hot: low blocked force
+  const double fb0 = act.drive.tca->blocked_force(segs[0].temperature_K);
+  const double fb1 = act.drive.tca->blocked_force(segs[1].temperature_K);
+  ASSERT_GT(fb0, fb1);
+  ActuatorResult a;
+  a.tension_N = 0.5 * (fb0 + fb1);  // between: segment 0 closed, segment 1 open
+  set_coil_contacts(act, segs, a);
+  ASSERT_EQ(a.segments.size(), segs.size());
+  EXPECT_TRUE(a.segments[0].second.coils_closed);
+  EXPECT_NEAR(a.segments[0].second.contact_force_N, fb0 - a.tension_N, 1e-12 * std::abs(fb0));
+  EXPECT_FALSE(a.segments[1].second.coils_closed);
+  EXPECT_TRUE(a.coils_closed);  // some coils closed
+  Result result;
+  result.actuators.push_back(a);
+  const auto j = to_json(result)["actuators"][0]["segments"];
+  ASSERT_EQ(j.size(), segs.size());
+  EXPECT_EQ(j[0]["coils_closed"], true);
+  EXPECT_EQ(j[1]["coils_closed"], false);
+
+  Actuator tendon;
+  tendon.drive.type = Drive::Type::kTension;
+  ActuatorResult t;
+  set_coil_contacts(tendon, {}, t);
+  EXPECT_FALSE(t.is_tca);
+  result.actuators[0] = t;
+  EXPECT_FALSE(to_json(result)["actuators"][0].contains("coils_closed"));
 }
 
 }  // namespace

@@ -169,4 +169,41 @@ inline rod::RodModel steel_tendon_rod() {
   return m;
 }
 
+/// The closed-coil closed form (docs/conventions.md "Closed coils"): a massless square rod
+/// (the square manipulator's body) with the manipulator TCA at (+3 mm, 0) at temperature t_K
+/// and a tendon on the centerline pulling the tip toward the base with tension P. While
+/// P is large enough that the TCA's coils stay closed (its tension below the blocked force),
+/// the TCA is a rigid strut, delta = 0, and the strains are the closed form of straight
+/// strings with the strut tension T_s that keeps delta = 0.
+inline rod::RodModel strut_rod(double load_N, double t_K) {
+  rod::RodModel m = square_rod(0.040, 0.010, 37.8e3, 0.5, 0.0);
+  m.name = "strut-rod";
+  add_tca_string(m, "tca", manipulator_tca(), 0.003, 0.0, t_K);
+  add_tension_string(m, "load", 0.0, 0.0, load_N);
+  return m;
+}
+
+/// The rigid-strut state of strut_rod: strut tension T_s, axial strain nu3, curvature
+/// kappa = omega_y and the tip position (p_x, 0, p_z).
+struct StrutClosedForm {
+  double strut_tension_N, nu3, kappa_1_m;
+  Eigen::Vector3d tip_W_m;
+};
+
+/// Closed form ([Pawlowski2019] straight strings, physics notes): nu3 = 1 - (T_s + P)/(E A),
+/// omega_y = T_s x / (E I_y), delta = L (nu3 - omega_y x) - L = 0 gives
+/// T_s = -P (1/(E A)) / (1/(E A) + x^2/(E I_y)); the arc p = nu3 ((1 - cos kL)/k, 0, sin(kL)/k).
+inline StrutClosedForm strut_closed_form(const rod::RodModel& m) {
+  const double EA = m.shear_extension_stiffness().z(), EIy = m.bending_torsion_stiffness().y();
+  const double x = m.actuators[0].routing.offset_m.x(), P = m.actuators[1].drive.tension_N;
+  const double L = m.length_m;
+  StrutClosedForm c{};
+  c.strut_tension_N = -P * (1.0 / EA) / (1.0 / EA + x * x / EIy);
+  c.nu3 = 1.0 - (c.strut_tension_N + P) / EA;
+  c.kappa_1_m = c.strut_tension_N * x / EIy;
+  const double k = c.kappa_1_m;
+  c.tip_W_m = c.nu3 * Eigen::Vector3d((1.0 - std::cos(k * L)) / k, 0.0, std::sin(k * L) / k);
+  return c;
+}
+
 }  // namespace tcasim::test_support

@@ -355,6 +355,87 @@ std::string input_error_message(const Parameters& p, const Material& m) {
   return "(no InputError)";
 }
 
+/// The contact residual's open, closed and segmented branches at points away from their
+/// kinks, each analytic derivative against central differences.
+TEST(TcaContact, ContactResidualDerivativesMatchCentralDifferencesOnEveryBranch) {
+  const Tca tca(three_thread(Kind::kExtension), softening());
+  const double t = K(90.0);
+  const double fb = tca.blocked_force(t);
+  struct Case {
+    const char* what;
+    double tension_N, elongation_m;
+    std::vector<Segment> segs;
+  };
+  const std::vector<Case> cases = {
+      {"open", fb + 0.05, tca.free_coil_elongation(fb + 0.05, t).elongation_m, {{1.0, t}}},
+      {"open, off the law", fb + 0.05, 0.004, {{1.0, t}}},
+      {"closed", fb - 0.05, 1e-4, {{1.0, t}}},
+      {"below closed length", fb + 0.02, -2e-4, {{1.0, t}}},
+      {"segments, both open", 0.02, 0.003, {{0.4, K(60.0)}, {0.6, K(120.0)}}},
+      {"segments, one closed", 0.5 * (tca.blocked_force(K(40.0)) + tca.blocked_force(K(140.0))),
+       0.002, {{0.5, K(40.0)}, {0.5, K(140.0)}}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const ContactResidual r = contact_residual(tca, c.tension_N, c.elongation_m, c.segs);
+    const auto phi_F = [&](double F) { return contact_residual(tca, F, c.elongation_m, c.segs).phi_N; };
+    const auto phi_d = [&](double d) { return contact_residual(tca, c.tension_N, d, c.segs).phi_N; };
+    const auto phi_T = [&](double dT) {
+      std::vector<Segment> s = c.segs;
+      for (Segment& k : s) k.temperature_K += dT;
+      return contact_residual(tca, c.tension_N, c.elongation_m, s).phi_N;
+    };
+    const double kc = tca.contact_stiffness_N_m();
+    // Scales of the derivatives: 1 (per N), k_c (per m), k_c x 1e-4 m/K (per K).
+    EXPECT_NEAR(r.dphi_dF, central_difference(phi_F, c.tension_N, 1e-7), kFdRelTol);
+    EXPECT_NEAR(r.dphi_ddelta_N_m, central_difference(phi_d, c.elongation_m, 1e-9), kFdRelTol * kc);
+    EXPECT_NEAR(r.dphi_dT_N_K, central_difference(phi_T, 0.0, 1e-3), kFdRelTol * kc * 1e-4);
+  }
+}
+
+TEST(TcaContact, ResidualVanishesExactlyOnTheOpenLawAndOnTheClosedStrut) {
+  const Tca tca(three_thread(Kind::kExtension), sun2022());
+  const double t = K(90.0);
+  const double fb = tca.blocked_force(t);
+  const std::vector<Segment> one{{1.0, t}};
+  // Open: F = F_free(delta), delta > 0. The one-segment branch is T - F_free (old TCA rows).
+  const double d = 0.003;
+  const double F = tca.tension(d, t).tension_N;
+  EXPECT_EQ(contact_residual(tca, F, d, one).phi_N, 0.0);
+  EXPECT_EQ(contact_residual(tca, F, d, one).dphi_dF, 1.0);
+  // Closed: delta = 0 with any tension below the blocked force (contact force c = F_b - F).
+  for (const double c : {1e-6, 0.1, 10.0}) {
+    EXPECT_EQ(contact_residual(tca, fb - c, 0.0, one).phi_N, 0.0);
+    const std::vector<SegmentContact> sc = segment_contacts(tca, fb - c, one);
+    EXPECT_TRUE(sc[0].coils_closed);
+    EXPECT_NEAR(sc[0].contact_force_N, c, 1e-12 * std::max(1.0, c));
+  }
+  // Not a state: shorter than closed, or closed with a tension above the blocked force.
+  EXPECT_GT(contact_residual(tca, fb - 0.1, -1e-4, one).phi_N, 0.0);
+  EXPECT_GT(contact_residual(tca, fb + 0.1, 0.0, one).phi_N, 0.0);
+  // A contraction TCA has no coil contact: the free-coil law below L too.
+  const Tca contraction(three_thread(Kind::kContraction), sun2022());
+  const double dc = -0.002;
+  EXPECT_EQ(contact_residual(contraction, contraction.tension(dc, t).tension_N, dc, one).phi_N, 0.0);
+  EXPECT_FALSE(segment_contacts(contraction, -10.0, one)[0].coils_closed);
+}
+
+TEST(TcaContact, SegmentedResidualVanishesWhereOneSegmentIsClosedAndTheOtherCarriesTheStroke) {
+  const Tca tca(three_thread(Kind::kExtension), sun2022());
+  const std::vector<Segment> segs{{0.5, K(40.0)}, {0.5, K(140.0)}};
+  const double F = 0.5 * (tca.blocked_force(K(40.0)) + tca.blocked_force(K(140.0)));
+  // Segment 0 closed (F below its blocked force), segment 1 open at half the TCA's length.
+  const double delta = 0.5 * tca.free_coil_elongation(F, K(140.0)).elongation_m;
+  ASSERT_GT(delta, 0.0);
+  EXPECT_NEAR(contact_residual(tca, F, delta, segs).phi_N, 0.0,
+              kRootRelTol * tca.contact_stiffness_N_m() * delta);
+  const std::vector<SegmentContact> sc = segment_contacts(tca, F, segs);
+  EXPECT_TRUE(sc[0].coils_closed);
+  EXPECT_FALSE(sc[1].coils_closed);
+  // The same total elongation without contact (series free-coil law) needs another tension.
+  EXPECT_GT(std::abs(series_tension(tca, delta, segs).tension_N - F), 1e-3 * std::abs(F));
+}
+
 TEST(TcaRejects, InvalidParametersNameTheKey) {
   Parameters p = three_thread();
   p.coiled_length_m = 0.5;
