@@ -346,8 +346,16 @@ struct ShootingSolver::Impl {
     omega_star = model.reference_curvature_B_1_m;
     const double EI = std::min(K_omega.x(), K_omega.y());
     // The states and unknowns carry nu - nu* (shooting.hpp), so internal forces keep their
-    // digits at any stiffness ratio EA L^2 / EI: the bending force scale needs no floor.
-    Fc = EI / (L * L);
+    // digits at any stiffness ratio EA L^2 / EI: no stiffness floor. The tip balance sums
+    // the applied forces, so its round-off is eps times the largest of them: F_c is the
+    // larger of the bending force scale and the model's own loads.
+    double load = std::max(model.tip_force_W_N.norm(), model.tip_moment_W_Nm.norm() / L);
+    load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 *
+                              model.gravity_W_m_s2.norm() * L);
+    for (const rod::Actuator& a : model.actuators) {
+      if (a.drive.type == rod::Drive::Type::kTension) load = std::max(load, a.count * std::abs(a.drive.tension_N));
+    }
+    Fc = std::max(EI / (L * L), load);
     unknown_of.assign(n_act, -1);
     for (int i = 0; i < n_act; ++i) {
       const rod::Actuator& a = model.actuators[i];

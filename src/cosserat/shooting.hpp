@@ -23,8 +23,10 @@
 ///   r[0:3] = ( K_nu (nu(L) - nu*) - R^T F_e + sum c_i T_i qh_i ) / F_c
 ///   r[3:6] = ( K_omega (omega(L) - omega*) - R^T M_e + sum c_i T_i r_i x qh_i ) / (F_c L)
 ///   r[6+k] = ( T_k - F_tca(delta_k(L), temperatures_k) ) / F_c
-/// with the characteristic force F_c = min(E I_x, E I_y) / L^2 (the force residual is K_nu e
-/// to the relative precision of e, so the scale needs no stiffness floor).
+/// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, the model's own largest
+/// load: |F_e|, |M_e| / L, the weight rho A |g| L, c_i |T_i| of tension drives), fixed when
+/// the solver is built. The force residual is K_nu e to the relative precision of e, so the
+/// scale needs no stiffness floor; its round-off is eps times the largest load it sums.
 /// Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
 /// DomainError at a trial point is a failed trial (the line search backs off).
