@@ -239,10 +239,12 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
       }
       return true;
     };
-    // E_u, B_u: perturbed initial unknowns (typical scales as in the shooting solver).
+    // E_u, B_u: perturbed initial unknowns (typical scales as in the shooting solver: the
+    // strain deviations nu(0) - nu* of F_c, curvatures 1/L, tensions F_c).
+    const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
     Eigen::VectorXd xp = x;
     for (int j = 0; j < nx; ++j) {
-      const double typ = j < 3 ? 1.0 : (j < 6 ? 1.0 / L : Fc);
+      const double typ = j < 3 ? Fc / K_nu[j] : (j < 6 ? 1.0 / L : Fc);
       const double h = step * std::max(std::abs(x[j]), typ);
       auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
         xp[j] = x[j] + hh;

@@ -86,7 +86,9 @@ LieGroupRk4::LieGroupRk4(int dim, int directions, int steps, KinematicLayout lay
 
 Vec6 LieGroupRk4::twist(const Eigen::VectorXd& Y, int b) const {
   Vec6 xi;
+  // Block 0 holds the deviation nu - nu_reference; its sensitivities are those of nu.
   xi.head<3>() = Y.segment<3>(b * dim_ + lay_.nu);
+  if (b == 0) xi.head<3>() += lay_.nu_reference;
   xi.tail<3>() = Y.segment<3>(b * dim_ + lay_.omega);
   return xi;
 }

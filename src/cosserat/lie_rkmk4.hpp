@@ -53,12 +53,14 @@ class Se3Exp {
 };
 
 /// Where the pose and the twist sit in the flattened state (shooting.hpp layout by default):
-/// p_W at [p, p+3), R_WB column-major at [R, R+9), nu_B at [nu, nu+3), omega_B at [omega, omega+3).
+/// p_W at [p, p+3), R_WB column-major at [R, R+9), nu_B - nu_reference at [nu, nu+3) (the
+/// shooting state holds the deviation from nu* = e3), omega_B at [omega, omega+3).
 struct KinematicLayout {
   int p = 0;
   int R = 3;
   int nu = 12;
   int omega = 15;
+  Eigen::Vector3d nu_reference = Eigen::Vector3d::UnitZ();
 };
 
 /// Fixed-step RKMK4 integrator of a flattened state y (dimension `dim`), optionally augmented

@@ -117,12 +117,13 @@ void evaluate(const Rod& P, const S* y, const S* cT, S* dy) {
   const S& c = y[kCS];
   const S& s = y[kCS + 1];
   const S& nu_x = y[kNu];
-  const S& nu_z = y[kNu + 1];
+  const S& e_z = y[kNu + 1];  // nu_z - 1 (the state holds the deviation)
+  const S nu_z = e_z + 1.0;
   const S& kappa = y[kKappa];
   // [Pawlowski2019] Eqs. (9)-(10) in the plane: n_B = (K_x nu_x, 0, K_z (nu_z - 1)); m_B is
   // along y, so omega x m_B = 0.
   const S n_x = P.kn_x * nu_x;
-  const S n_z = P.kn_z * (nu_z - 1.0);
+  const S n_z = P.kn_z * e_z;
   // R^T f_ext with R = R_WB0 Rot_y: Rot_y^T (f_x, 0, f_z).
   const S f_x = c * P.f_x - s * P.f_z;
   const S f_z = s * P.f_x + c * P.f_z;
@@ -203,11 +204,12 @@ void wrench(const Rod& P, double kappa_star, double F_x, double F_z, double M_y,
   const S& c = y[kCS];
   const S& s = y[kCS + 1];
   const S& nu_x = y[kNu];
-  const S& nu_z = y[kNu + 1];
+  const S& e_z = y[kNu + 1];  // nu_z - 1
+  const S nu_z = e_z + 1.0;
   const S& kappa = y[kKappa];
   // R^T F_e = Rot_y^T (F_x, 0, F_z); R^T M_e = (0, M_y, 0).
   S rn_x = P.kn_x * nu_x - (c * F_x - s * F_z);
-  S rn_z = P.kn_z * (nu_z - 1.0) - (s * F_x + c * F_z);
+  S rn_z = P.kn_z * e_z - (s * F_x + c * F_z);
   S rm_y = P.kw_y * (kappa - kappa_star) - M_y;
   for (int i = 0; i < static_cast<int>(P.rho.size()); ++i) {
     const StringDirection<S> q = direction(nu_x, nu_z, kappa, P.rho[i]);

@@ -15,7 +15,8 @@
 ///
 /// State layout (dimension kDelta + actuators), base-frame coordinates:
 ///   q [0,2) = (x, z) of R_WB0^T (p_W - p_W(0)); cs [2,4) = (Rot_00, Rot_02) = (cos, sin theta);
-///   nu [4,6) = (nu_x, nu_z); kappa [6] = omega_y; c [7,9) = int_0^s q ds; delta_i [9, 9 + n).
+///   nu [4,6) = (nu_x, nu_z - 1) (deviation from nu* = e3, as in the 3-D layout of
+///   shooting.hpp); kappa [6] = omega_y; c [7,9) = int_0^s q ds; delta_i [9, 9 + n).
 #include <vector>
 
 namespace tcasim::cosserat::planar {

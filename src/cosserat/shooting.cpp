@@ -26,11 +26,6 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 using namespace state_layout;
 
-/// Forces are scaled by F_c >= kStiffnessFloor max(GA, EA): the tip force residual carries
-/// K_nu times the strain round-off accumulated over an IVP (~1e-14), so with this floor
-/// that round-off stays ~1e-10 of F_c, i.e. at the default tolerance, for stiff rods
-/// (EA >> EI/L^2), and the test ||r||_inf <= tolerance remains reachable.
-constexpr double kStiffnessFloor = 1e-4;
 /// Armijo constant of the backtracking line search on phi = ||r||^2 / 2 (Newton's
 /// direction d solves J d = -r, so phi'(0) = -2 phi: accept phi(t) <= (1 - 2 c t) phi).
 constexpr double kArmijo = 1e-4;
@@ -353,7 +348,17 @@ struct ShootingSolver::Impl {
     nu_star = Vec3::UnitZ();
     omega_star = model.reference_curvature_B_1_m;
     const double EI = std::min(K_omega.x(), K_omega.y());
-    Fc = std::max(EI / (L * L), kStiffnessFloor * K_nu.maxCoeff());
+    // The states and unknowns carry nu - nu* (shooting.hpp), so internal forces keep their
+    // digits at any stiffness ratio EA L^2 / EI: no stiffness floor. The tip balance sums
+    // the applied forces, so its round-off is eps times the largest of them: F_c is the
+    // larger of the bending force scale and the model's own loads.
+    double load = std::max(model.tip_force_W_N.norm(), model.tip_moment_W_Nm.norm() / L);
+    load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 *
+                              model.gravity_W_m_s2.norm() * L);
+    for (const rod::Actuator& a : model.actuators) {
+      if (a.drive.type == rod::Drive::Type::kTension) load = std::max(load, a.count * std::abs(a.drive.tension_N));
+    }
+    Fc = std::max(EI / (L * L), load);
     unknown_of.assign(n_act, -1);
     for (int i = 0; i < n_act; ++i) {
       const rod::Actuator& a = model.actuators[i];
@@ -506,10 +511,11 @@ struct ShootingSolver::Impl {
   // docs/conventions.md "Body-frame ODEs solved by the shooting solver".
   void eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) const {
     const Eigen::Map<const Mat3> R(yy.data() + kR);
-    const Vec3 nu = yy.segment<3>(kNu);
+    const Vec3 e = yy.segment<3>(kNu);  // nu - nu* (shooting.hpp layout)
+    const Vec3 nu = nu_star + e;
     const Vec3 omega = yy.segment<3>(kOmega);
     // [Pawlowski2019] Eqs. (9)-(10): n_B = K_nu (nu - nu*), m_B = K_omega (omega - omega*).
-    const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
+    const Vec3 n_B = K_nu.cwiseProduct(e);
     const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
 
     // M = K + sum_i U_i A_i U_i^T (StringSystem), A_i = c_i T_i P_i / |q_i|.
@@ -572,9 +578,10 @@ struct ShootingSolver::Impl {
   void eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const {
     const double* yy = Ya.data();
     const Eigen::Map<const Mat3> R(yy + kR);
-    const Vec3 nu(yy + kNu);
+    const Vec3 e(yy + kNu);  // nu - nu*
+    const Vec3 nu = nu_star + e;
     const Vec3 omega(yy + kOmega);
-    const Vec3 n_B = K_nu.cwiseProduct(nu - nu_star);
+    const Vec3 n_B = K_nu.cwiseProduct(e);
     const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
     StringSystem lu(K_nu, K_omega, K_nu_inv, K_omega_inv);
     Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
@@ -688,7 +695,7 @@ struct ShootingSolver::Impl {
     y0.setZero();
     if (planar) {
       y0[planar::kCS] = 1.0;  // Rot_y(0) = I
-      y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z, kappa) are contiguous
+      y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z - 1, kappa) are contiguous
       return;
     }
     y0.segment<3>(kP) = model.base_position_W_m;
@@ -740,7 +747,7 @@ struct ShootingSolver::Impl {
     if (planar) return planar_jacobian(act, lambda, J);
     // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
     const Eigen::Map<const Mat3> R(y.data() + kR);
-    const Vec3 nu = y.segment<3>(kNu), omega = y.segment<3>(kOmega);
+    const Vec3 nu = nu_star + y.segment<3>(kNu), omega = y.segment<3>(kOmega);
     const Vec3 F_e = lambda * act.tip_force_W_N + reaction_W(x), M_e = lambda * act.tip_moment_W_Nm;
     for (int j = 0; j < nx; ++j) {
       const double* yj = Y.data() + dim * (j + 1);
@@ -812,10 +819,11 @@ struct ShootingSolver::Impl {
       return tca_rows(x, yL, planar::kDelta, r);
     }
     const Eigen::Map<const Mat3> R(yL.data() + kR);
-    const Vec3 nu = yL.segment<3>(kNu);
+    const Vec3 e = yL.segment<3>(kNu);  // nu - nu*
+    const Vec3 nu = nu_star + e;
     const Vec3 omega = yL.segment<3>(kOmega);
     // The holder's reaction (an unknown, not scaled by lambda) adds to the applied tip force.
-    Vec3 rn = K_nu.cwiseProduct(nu - nu_star) -
+    Vec3 rn = K_nu.cwiseProduct(e) -
               R.transpose() * (lambda * act.tip_force_W_N + reaction_W(x));
     Vec3 rm = K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
     for (int i = 0; i < n_act; ++i) {
@@ -865,7 +873,7 @@ struct ShootingSolver::Impl {
   Eigen::VectorXd typical_scale() const {
     assert(!planar && "the planar reduction uses sensitivity Jacobians, never differences");
     Eigen::VectorXd t(nx);
-    t.head<3>().setOnes();
+    t.head<3>() = Fc * K_nu_inv;  // the strain deviation of the characteristic force
     t.segment<3>(3).setConstant(1.0 / L);
     t.segment(6, n_tca).setConstant(Fc);
     t.tail(n_con).setConstant(Fc);
@@ -898,8 +906,9 @@ struct ShootingSolver::Impl {
   }
 
   /// Constant strains of the closed form (docs/conventions.md) for tensions cT (count x
-  /// tension per actuator), offsets taken at s = 0, plus the reference strains.
-  void closed_form_strains(const std::vector<double>& cTs, Vec3& nu, Vec3& omega) const {
+  /// tension per actuator), offsets taken at s = 0: e = nu - nu* (the deviation, no
+  /// cancellation) and omega (the reference curvature plus the deviation).
+  void closed_form_strains(const std::vector<double>& cTs, Vec3& e, Vec3& omega) const {
     double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
     for (int i = 0; i < n_act; ++i) {
       const Vec3 r = model.actuators[i].routing.r(0.0);
@@ -907,7 +916,7 @@ struct ShootingSolver::Impl {
       sum_Tx += cTs[i] * r.x();
       sum_Ty += cTs[i] * r.y();
     }
-    nu = nu_star - Vec3(0.0, 0.0, sum_T / K_nu.z());
+    e = Vec3(0.0, 0.0, -sum_T / K_nu.z());
     omega = omega_star + Vec3(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
   }
 
@@ -973,21 +982,21 @@ struct ShootingSolver::Impl {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
     set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
     std::vector<double> cTs = cT;
-    Vec3 nu, omega;
+    Vec3 e, omega;  // e = nu - nu*
     if (with_gravity && !f_ext_W.isZero(0.0)) {
       Vec6 mean = Vec6::Zero();
       for (int it = 0; it < kGuessIterations; ++it) {
         guess_tensions(mean, cTs, x);
-        closed_form_strains(cTs, nu, omega);
+        closed_form_strains(cTs, e, omega);
         Vec6 next_mean, base;
-        load_strains(nu + mean.head<3>(), omega + mean.tail<3>(), next_mean, base);
+        load_strains(nu_star + e + mean.head<3>(), omega + mean.tail<3>(), next_mean, base);
         if (!next_mean.allFinite() || !base.allFinite()) break;
         const double change = (next_mean - mean).lpNorm<Eigen::Infinity>();
         mean = next_mean;
         if (change <= kGuessTolerance * (1.0 / L + mean.lpNorm<Eigen::Infinity>())) {
           guess_tensions(mean, cTs, x);
-          closed_form_strains(cTs, nu, omega);
-          x.head<3>() = nu + base.head<3>();
+          closed_form_strains(cTs, e, omega);
+          x.head<3>() = e + base.head<3>();
           x.segment<3>(3) = omega + base.tail<3>();
           if (used_gravity) *used_gravity = true;
           return x;
@@ -995,8 +1004,8 @@ struct ShootingSolver::Impl {
       }
     }
     guess_tensions(Vec6::Zero(), cTs, x);  // without gravity (none, or no fixed point)
-    closed_form_strains(cTs, nu, omega);
-    x.head<3>() = nu;
+    closed_form_strains(cTs, e, omega);
+    x.head<3>() = e;
     x.segment<3>(3) = omega;
     return x;
   }
@@ -1015,7 +1024,7 @@ struct ShootingSolver::Impl {
     auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
       for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
       closed_form_strains(cTs, nu, omega);
-      nu += extra.head<3>();
+      nu += nu_star + extra.head<3>();
       omega += extra.tail<3>();
       for (int k = 0; k < n_tca; ++k) {
         const int i = act_of[k];
@@ -1317,7 +1326,7 @@ struct ShootingSolver::Impl {
     x_acc = x;
   }
 
-  /// Planar reduction: the in-plane unknowns (nu_x, nu_z, omega_y, T_tca...) of 3-D unknowns.
+  /// Planar reduction: the in-plane unknowns (nu_x, nu_z - 1, omega_y, T_tca...) of 3-D unknowns.
   Eigen::VectorXd reduce(const Eigen::VectorXd& x3) const {
     Eigen::VectorXd x(nx);
     x << x3[0], x3[2], x3[4], x3.segment(6, n_tca);
@@ -1380,7 +1389,7 @@ struct ShootingSolver::Impl {
                    Summary& summary) const {
     const Mat3& R0 = model.R_WB0;
     const Vec3 p0 = model.base_position_W_m;
-    const Vec3 n0 = R0 * K_nu.cwiseProduct(x.head<3>() - nu_star);
+    const Vec3 n0 = R0 * K_nu.cwiseProduct(x.head<3>());  // x holds nu(0) - nu*
     const Vec3 m0 = R0 * K_omega.cwiseProduct(x.segment<3>(3) - omega_star);
     const Vec3 w = f_ext_W;
     const Vec3 pL = yL.segment<3>(kP);
@@ -1391,7 +1400,8 @@ struct ShootingSolver::Impl {
     for (int i = 0; i < n_act; ++i) {
       const rod::Routing& ro = model.actuators[i].routing;
       const Vec3 r0 = ro.r(0.0);
-      const Vec3 t0 = R0 * (x.head<3>() + x.segment<3>(3).cross(r0) + ro.dr(0.0)).normalized();
+      const Vec3 t0 =
+          R0 * (nu_star + x.head<3>() + x.segment<3>(3).cross(r0) + ro.dr(0.0)).normalized();
       n_exp -= cT[i] * t0;
       m_exp -= (R0 * r0).cross(cT[i] * t0);
     }

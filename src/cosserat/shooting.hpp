@@ -4,10 +4,15 @@
 ///
 /// IVP state (dimension 21 + n_actuators), all in SI:
 ///   y = ( p_W [0,3), R_WB [3,12) column-major (y[3 + 3 j + i] = R(i, j)),
-///         nu_B [12,15), omega_B [15,18), c_W = int_0^s p_W ds [18,21) (for the global
-///         equilibrium check), delta_i [21, 21 + n_actuators) (one per actuator) ).
-/// Unknowns x = ( nu_B(0) 3, omega_B(0) 3, T_i for each TCA-driven actuator in model
-/// order, tip-constraint reaction ); tension-driven actuators have known tensions.
+///         e_B = nu_B - nu* [12,15) (nu* = e3), omega_B [15,18), c_W = int_0^s p_W ds
+///         [18,21) (for the global equilibrium check), delta_i [21, 21 + n_actuators) ).
+/// Unknowns x = ( e_B(0) = nu_B(0) - nu* 3, omega_B(0) 3, T_i for each TCA-driven actuator
+/// in model order, tip-constraint reaction ); tension-driven actuators have known tensions.
+/// Why the deviation e and not nu (docs/conventions.md "Shooting states and unknowns"): the
+/// internal force n_B = K_nu e is then computed from a number that carries its own digits,
+/// whereas K_nu (nu - nu*) from nu ~ 1 has an absolute error eps K_nu, i.e. a relative error
+/// eps EA L^2 / EI of the force scale EI / L^2: 1e-4 for EA L^2 / EI = 1e12. The deviation
+/// changes nothing else: its derivative, sensitivities and the discretization are those of nu.
 /// Tip constraint (RodModel::tip_constraint): pinned adds the reaction force lambda_W (3,
 /// world frame, the force the holder applies to the rod) and the residual
 /// (p(L) - p_target) / L (3); normal-only adds lambda (1; reaction lambda n) and
@@ -19,8 +24,11 @@
 ///   r[3:6] = ( K_omega (omega(L) - omega*) - R^T M_e + sum c_i T_i r_i x qh_i ) / (F_c L)
 ///   r[6+k] = phi_k( T_k, delta_k(L) ) / F_c, phi_k = T_k - F_tca(delta_k(L), temperatures_k)
 ///            with coil contact (tca::contact_residual; docs/conventions.md "Closed coils")
-/// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, kStiffnessFloor max(GA, EA))
-/// (see shooting.cpp for the floor's reason). Convergence: ||r||_inf <= Options::tolerance.
+/// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, the model's own largest
+/// load: |F_e|, |M_e| / L, the weight rho A |g| L, c_i |T_i| of tension drives), fixed when
+/// the solver is built. The force residual is K_nu e to the relative precision of e, so the
+/// scale needs no stiffness floor; its round-off is eps times the largest load it sums.
+/// Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
 /// DomainError at a trial point is a failed trial (the line search backs off).
 /// Planar problems are solved in the plane with the in-plane states and unknowns
@@ -178,9 +186,9 @@ const char* to_string(Summary::Status s);
 /// A solution (or a starting guess): unknowns and what warm starts reuse.
 struct Solution {
   bool valid = false;          ///< false: solve starts from the initial guess (a cold solve)
-  Eigen::VectorXd unknowns;    ///< x = (nu(0), omega(0), T_tca..., tip reaction)
+  Eigen::VectorXd unknowns;    ///< x = (nu(0) - nu*, omega(0), T_tca..., tip reaction)
   /// d r_scaled / d x at (or near) `unknowns`; may be empty. After a planar solve
-  /// (Summary::planar) it is the Jacobian of the in-plane unknowns (nu_x, nu_z, omega_y,
+  /// (Summary::planar) it is the Jacobian of the in-plane unknowns (nu_x, nu_z - 1, omega_y,
   /// T_tca...), as are coarse_unknowns, coarse_jacobian and the path's unknowns; a solve
   /// ignores those fields when their size is not its own number of unknowns.
   Eigen::MatrixXd jacobian;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "support/convergence.hpp"
+#include "support/elastica.hpp"
 #include "support/finite_difference.hpp"
 
 namespace tcasim::test_support {
@@ -101,6 +102,43 @@ TEST(SupportConvergence, FailureMessagePrintsTheWholeTable) {
   for (const char* piece : {"level", "error", "order", "4.00000e-01", "1.00000e-02", "2.0000", "[3.85, 4.15]"})
     EXPECT_NE(msg.find(piece), std::string::npos) << "missing '" << piece << "' in:\n" << msg;
   EXPECT_NONFATAL_FAILURE(ExpectOrderInBracket(h, e, 4.0, 0.15), "2.0000");
+}
+
+// Carlson's reference values (Numer. Algorithms 10:13-26, 1995, Sec. 3, 14 digits) and
+// K(1/2), E(1/2) (DLMF 19.6, 16 digits): the duplication and series give them to round-off.
+constexpr double kEllipticRelative = 1e-13;
+
+TEST(SupportElliptic, CarlsonIntegralsMatchCarlsonsTestValues) {
+  EXPECT_NEAR(carlson_rf(1.0, 2.0, 0.0), 1.3110287771461, kEllipticRelative * 1.32);
+  EXPECT_NEAR(carlson_rf(2.0, 3.0, 4.0), 0.58408284167715, kEllipticRelative);
+  EXPECT_NEAR(carlson_rd(0.0, 2.0, 1.0), 1.7972103521034, kEllipticRelative * 1.8);
+  EXPECT_NEAR(carlson_rd(2.0, 3.0, 4.0), 0.16510527294261, kEllipticRelative);
+  EXPECT_THROW(carlson_rf(-1.0, 1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(carlson_rd(1.0, 1.0, 0.0), std::invalid_argument);
+}
+
+TEST(SupportElliptic, CompleteIntegralsAtParameterOneHalf) {
+  const double half_pi = 1.5707963267948966;
+  EXPECT_NEAR(elliptic_f(half_pi, 0.5), 1.8540746773013719, kEllipticRelative * 1.9);
+  EXPECT_NEAR(elliptic_e(half_pi, 0.5), 1.3506438810476755, kEllipticRelative * 1.4);
+  EXPECT_NEAR(elliptic_e(half_pi, 0.0), half_pi, kEllipticRelative * 1.6);
+}
+
+/// [Mattiasson1981]'s table has 5 decimals: the closed form rounds to it (half a unit).
+constexpr double kTableRounding = 5e-6;
+
+TEST(SupportElliptic, CantileverElasticaReproducesMattiassonsTable) {
+  struct Row { double k, w, u, rotation; };
+  for (const Row& row : {Row{1, 0.30172, 0.05643, 0.46135}, Row{2, 0.49346, 0.16064, NAN},
+                         Row{5, 0.71379, 0.38763, NAN}, Row{10, 0.81061, 0.55500, 1.43029}}) {
+    const ElasticaTip t = cantilever_elastica_tip(row.k);
+    EXPECT_NEAR(t.deflection, row.w, kTableRounding) << "k = " << row.k;
+    EXPECT_NEAR(1.0 - t.axial, row.u, kTableRounding) << "k = " << row.k;
+    if (std::isfinite(row.rotation)) {
+      EXPECT_NEAR(t.rotation, row.rotation, kTableRounding) << "k = " << row.k;
+    }
+  }
+  EXPECT_THROW(cantilever_elastica_tip(0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -51,7 +51,7 @@ VectorXd kernel_state(int dim, int n_dir) {
   Y[planar::kCS] = std::cos(th);
   Y[planar::kCS + 1] = std::sin(th);
   Y[planar::kNu] = 0.05;
-  Y[planar::kNu + 1] = 0.93;
+  Y[planar::kNu + 1] = -0.07;  // nu_z - 1
   Y[planar::kKappa] = 12.0;
   return Y;
 }

@@ -126,7 +126,8 @@ void expect_matches_closed_form(const rod::RodModel& m, const Solution& sol, con
   ASSERT_TRUE(s.converged()) << s.message;
   const ClosedForm cf = closed_form(m, tensions);
   const double L = m.length_m;
-  const Vector3d nu0 = sol.unknowns.head<3>(), om0 = sol.unknowns.segment<3>(3);
+  // The unknowns hold nu(0) - nu* (shooting.hpp layout).
+  const Vector3d nu0 = Vector3d::UnitZ() + sol.unknowns.head<3>(), om0 = sol.unknowns.segment<3>(3);
   EXPECT_LE((nu0 - cf.nu).norm(), kClosedFormRelativeError * cf.nu.norm());
   EXPECT_LE((om0 - cf.omega).norm(), kClosedFormRelativeError * cf.omega.norm());
   const Eigen::Matrix4d g = constant_strain_tip(cf.nu, cf.omega, L);
@@ -152,7 +153,7 @@ TEST(ShootingClosedForm, StraightStringsAtArbitraryOffsetsGiveExactConstantStrai
   Solution sol;
   sol.valid = true;
   sol.unknowns.resize(6);
-  sol.unknowns << 0.01, -0.02, 0.98, 1.0, -2.0, 0.5;
+  sol.unknowns << 0.01, -0.02, -0.02, 1.0, -2.0, 0.5;  // nu(0) - nu* = (0.01, -0.02, -0.02)
   const Summary s = solver.solve(act, sol);
   EXPECT_GE(s.iterations, 2);
   const rod::Result res = solver.make_result(act, sol, s);
@@ -476,7 +477,7 @@ rod::RodModel jacobian_test_rod() {
 
 Eigen::VectorXd jacobian_test_point() {
   Eigen::VectorXd x(7);
-  x << 0.01, -0.02, 0.99, 2.0, -5.0, 1.0, -0.002;  // away from equilibrium, bent, TCA pushing
+  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;  // nu - nu*: away from equilibrium, bent, TCA pushing
   return x;
 }
 

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "common/error.hpp"
 #include "common/so3.hpp"
+#include "support/rod_models.hpp"
 
 namespace tcasim::validation {
 namespace {
@@ -141,6 +143,76 @@ TEST(StudyLevels, QuickUsesFewerLevelsThanFullFromTheSameCoarsestMesh) {
     EXPECT_LT(q.count, f.count);
     EXPECT_EQ(q.coarsest, f.coarsest);
   }
+}
+
+TEST(AsymptoticRange, EndsWhereTheErrorStopsFallingAtTheFloor) {
+  // Order 4 down to a floor of 1e-9: the two floor levels are excluded.
+  const std::vector<double> h = {1.0 / 8, 1.0 / 16, 1.0 / 32, 1.0 / 64, 1.0 / 128, 1.0 / 256};
+  const std::vector<double> e = {1.6e-5, 1.0e-6, 6.25e-8, 3.9e-9, 2.1e-9, 3.0e-9};
+  EXPECT_EQ(asymptotic_level_count(h, e, order_bracket(2), std::vector<double>(6, 1e-8)), 4);
+  // The same data with a floor estimate far below: the low orders are not round-off.
+  EXPECT_EQ(asymptotic_level_count(h, e, order_bracket(2), std::vector<double>(6, 1e-12)), 6);
+  // A clean power law has no floor, whatever the estimate.
+  std::vector<double> clean;
+  for (double hi : h) clean.push_back(std::pow(hi, 4.0));
+  EXPECT_EQ(asymptotic_level_count(h, clean, order_bracket(2), std::vector<double>(6, 1.0)), 6);
+  // A zero error (an exact level) counts as refinement that stopped helping.
+  EXPECT_EQ(asymptotic_level_count({0.5, 0.25, 0.125}, {1e-3, 6e-5, 0.0}, order_bracket(2), {1e-6, 1e-6, 1e-6}), 2);
+  EXPECT_THROW(asymptotic_level_count(h, e, order_bracket(2), {1e-8}), std::invalid_argument);
+}
+
+TEST(AsymptoticRange, FloorEstimateGrowsWithTheStiffnessRatioAndTheNodes) {
+  rod::RodModel m;
+  m.length_m = 2.0;
+  m.section.shape = rod::Section::Shape::kCustom;
+  m.material.youngs_modulus_Pa = 1.0;
+  m.material.shear_modulus_Pa = 0.5;
+  m.section.area_m2 = 4e12;  // EA; GA = 2e12
+  m.section.I_x_m4 = 4.0;
+  m.section.I_y_m4 = 8.0;
+  m.section.J_m4 = 1.0;
+  // eps nodes max(EA, GA) L^2 / min(EI) L = eps 9 4e12 4 / 4 2 (4 quadratic elements).
+  EXPECT_NEAR(fe_round_off_floor_m(m, 2, 4), 2.220446049250313e-16 * 9 * 8e12, kRoundOff * 1.6e-2);
+}
+
+/// Quadratic elements on Mattiasson's cantilever (k = 5) with EA L^2 / EI = 1e8, 4 to 256
+/// elements: the error falls at order 4 (measured 3.95 to 4.00) down to 2.1e-9 L at 64
+/// elements, then jumps to the round-off floor (1.9e-6 L at 128, estimate 5.7e-6 L).
+constexpr double kStiffRatio = 1e8;
+constexpr double kStiffLoad = 5.0;
+/// The floor estimate is an upper estimate: errors at the floor stay below it.
+constexpr double kFloorEstimateFactor = 1.0;
+
+TEST(AsymptoticRange, StiffCantileverStudyReportsTheFloorInsteadOfAReversedOrder) {
+  rod::RodModel m = test_support::custom_rod(1.0, kStiffRatio, kStiffRatio, 1.0, 1.0);
+  m.name = "stiff-cantilever";
+  m.tip_force_W_N = Eigen::Vector3d(kStiffLoad, 0.0, 0.0);
+  ReferenceSettings rs;
+  rs.steps = 512;
+  rs.cvode_rtol = 0.0;
+  const Reference ref = shooting_reference(m, rs);
+  ASSERT_TRUE(ref.converged());
+  FeSettings tol = tight_tolerances();
+  tol.order = 2;
+  const ConvergenceStudy study = convergence_study(m, ref, tol, refinement_levels(4, 7));
+  const std::string table = convergence_table(study);
+  std::printf("%s", table.c_str());
+  ASSERT_TRUE(study.converged());
+  const OrderBracket b = order_bracket(2);
+  EXPECT_GE(study.asymptotic_levels, 3) << table;
+  EXPECT_LT(study.asymptotic_levels, static_cast<int>(study.levels.size())) << table;
+  for (int i = 1; i < study.asymptotic_levels; ++i) {
+    EXPECT_TRUE(b.contains(study.levels[i].observed_order)) << "level " << i << "\n" << table;
+  }
+  EXPECT_TRUE(b.contains(study.asymptotic_order)) << table;
+  for (std::size_t i = study.asymptotic_levels; i < study.levels.size(); ++i) {
+    EXPECT_TRUE(study.levels[i].round_off) << table;
+    EXPECT_LE(study.levels[i].error_m, kFloorEstimateFactor * study.levels[i].floor_estimate_m) << table;
+  }
+  EXPECT_NE(table.find("round-off floor"), std::string::npos) << table;
+  const std::string csv = convergence_csv_rows(m.name, study);
+  EXPECT_NE(csv.find(",round-off floor,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",asymptotic,"), std::string::npos) << csv;
 }
 
 }  // namespace

@@ -265,7 +265,16 @@ ConvergenceStudy convergence_study(const rod::RodModel& model, const Reference& 
   const std::vector<double> p = observed_orders(h, errors);
   study.levels[0].observed_order = kNaN;
   for (std::size_t i = 1; i < study.levels.size(); ++i) study.levels[i].observed_order = p[i - 1];
-  const std::size_t n = study.levels.size();
+  std::vector<double> floors;
+  for (auto& level : study.levels) {
+    level.floor_estimate_m = fe_round_off_floor_m(model, study.order, level.elements);
+    floors.push_back(level.floor_estimate_m);
+  }
+  study.asymptotic_levels = asymptotic_level_count(h, errors, order_bracket(study.order), floors);
+  for (std::size_t i = study.asymptotic_levels; i < study.levels.size(); ++i) study.levels[i].round_off = true;
+  study.asymptotic_order = study.asymptotic_levels >= 2 ? p[study.asymptotic_levels - 2] : kNaN;
+  // Richardson from the three finest asymptotic levels (or the three finest).
+  const std::size_t n = std::max<std::size_t>(3, study.asymptotic_levels);
   std::vector<Eigen::Vector3d> tips;
   for (std::size_t i = n - 3; i < n; ++i) tips.push_back(centerline_point(study.levels[i].fe.result, study.measured_s_m));
   study.richardson = richardson({h[n - 3], h[n - 2], h[n - 1]}, tips);
@@ -273,6 +282,25 @@ ConvergenceStudy convergence_study(const rod::RodModel& model, const Reference& 
     level.richardson_error_m = (centerline_point(level.fe.result, study.measured_s_m) - study.richardson.value).norm();
   }
   return study;
+}
+
+double fe_round_off_floor_m(const rod::RodModel& model, int order, int elements) {
+  const double L = model.length_m;
+  const Eigen::Vector3d Kw = model.bending_torsion_stiffness();
+  const double nodes = static_cast<double>(order * elements + 1);
+  return std::numeric_limits<double>::epsilon() * nodes * model.shear_extension_stiffness().maxCoeff() * L * L /
+         std::min(Kw.x(), Kw.y()) * L;
+}
+
+int asymptotic_level_count(const std::vector<double>& h, const std::vector<double>& errors,
+                           const OrderBracket& bracket, const std::vector<double>& floors_m) {
+  if (floors_m.size() != errors.size()) throw std::invalid_argument("asymptotic_level_count: one floor per level");
+  const std::vector<double> p = observed_orders(h, errors);
+  for (std::size_t i = 1; i < errors.size(); ++i) {
+    const bool slowed = !(p[i - 1] >= bracket.lo());  // NaN (a zero error) counts as slowed
+    if (slowed && errors[i] <= floors_m[i]) return static_cast<int>(i);
+  }
+  return static_cast<int>(errors.size());
 }
 
 OrderBracket order_bracket(int order) {
@@ -319,29 +347,44 @@ std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& refere
 
 std::string convergence_csv_header() {
   return "scenario,order,elements,h_m,error_m,observed_order,richardson_error_m,richardson_order,fe_time_s,"
-         "converged,measured_s_m\n";
+         "converged,measured_s_m,range,floor_estimate_m,asymptotic_order\n";
 }
 
 std::string convergence_csv_rows(const std::string& scenario, const ConvergenceStudy& study) {
   auto number = [](double v) { return std::isfinite(v) ? fmt::format("{:.6e}", v) : std::string(); };
   std::string out;
   for (const auto& l : study.levels) {
-    out += fmt::format("{},{},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e}\n", scenario, study.order, l.elements,
-                       l.h_m, l.error_m, number(l.observed_order), l.richardson_error_m, number(study.richardson.order),
-                       l.fe.time_s, l.fe.converged ? 1 : 0, study.measured_s_m);
+    out += fmt::format("{},{},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{}\n", scenario, study.order,
+                       l.elements, l.h_m, l.error_m, number(l.observed_order), l.richardson_error_m,
+                       number(study.richardson.order), l.fe.time_s, l.fe.converged ? 1 : 0, study.measured_s_m,
+                       l.round_off ? "round-off floor" : "asymptotic", l.floor_estimate_m,
+                       number(study.asymptotic_order));
   }
   return out;
 }
 
 std::string convergence_table(const ConvergenceStudy& study) {
-  std::string out = fmt::format("  {:>8} {:>12} {:>12} {:>8} {:>14} {:>9}\n", "elements", "h [m]", "error [m]",
-                                "order", "err vs Rich [m]", "time [s]");
+  std::string out = fmt::format("  {:>8} {:>12} {:>12} {:>8} {:>14} {:>12} {:>9}\n", "elements", "h [m]",
+                                "error [m]", "order", "err vs Rich [m]", "floor [m]", "time [s]");
   for (const auto& l : study.levels) {
-    out += fmt::format("  {:>8} {:>12.4e} {:>12.4e} {:>8} {:>14.4e} {:>9.3f}{}\n", l.elements, l.h_m, l.error_m,
+    out += fmt::format("  {:>8} {:>12.4e} {:>12.4e} {:>8} {:>14.4e} {:>12.4e} {:>9.3f}{}{}\n", l.elements, l.h_m,
+                       l.error_m,
                        std::isfinite(l.observed_order) ? fmt::format("{:.3f}", l.observed_order) : std::string("-"),
-                       l.richardson_error_m, l.fe.time_s, l.fe.converged ? "" : "  NOT CONVERGED");
+                       l.richardson_error_m, l.floor_estimate_m, l.fe.time_s, l.round_off ? "  round-off floor" : "",
+                       l.fe.converged ? "" : "  NOT CONVERGED");
   }
-  out += fmt::format("  Richardson (three finest levels): order {:.3f}\n", study.richardson.order);
+  const int n = static_cast<int>(study.levels.size());
+  if (study.asymptotic_levels < n) {
+    out += fmt::format(
+        "  Refinement stops helping after {} elements: the error reached the FE's round-off floor (estimate "
+        "eps nodes EA L^2/EI L, column floor); the asymptotic order is over the {} levels before it\n",
+        study.levels[std::max(study.asymptotic_levels - 1, 0)].elements, study.asymptotic_levels);
+  }
+  out += fmt::format("  Asymptotic order (two finest asymptotic levels): {}\n",
+                     std::isfinite(study.asymptotic_order) ? fmt::format("{:.3f}", study.asymptotic_order)
+                                                           : std::string("- (fewer than two levels)"));
+  out += fmt::format("  Richardson ({} levels): order {:.3f}\n",
+                     study.asymptotic_levels >= 3 ? "three finest asymptotic" : "three finest", study.richardson.order);
   return out;
 }
 

@@ -122,6 +122,11 @@ struct ConvergenceLevel {
   double error_m = 0.0;              ///< |p_fe(s) - p_ref(s)| at s = measured_arc_length
   double observed_order = 0.0;       ///< from this level and the previous one (NaN at the first)
   double richardson_error_m = 0.0;   ///< |p_fe(L) - u*| against the Richardson extrapolation
+  /// Round-off floor estimate of this mesh's position error (fe_round_off_floor_m).
+  double floor_estimate_m = 0.0;
+  /// Beyond the asymptotic range: refinement stopped helping at or before this level
+  /// (ConvergenceStudy::asymptotic_levels); its order is not the discretization's.
+  bool round_off = false;
 };
 
 /// A convergence study of one model and one order.
@@ -129,7 +134,14 @@ struct ConvergenceStudy {
   int order = 2;
   double measured_s_m = 0.0;             ///< arc length of the measured point
   std::vector<ConvergenceLevel> levels;  ///< coarse to fine
-  Richardson richardson;                 ///< from the three finest levels
+  /// Leading levels in the asymptotic range (asymptotic_level_count); the others are
+  /// flagged round_off and their orders are excluded from asymptotic_order and the gates.
+  int asymptotic_levels = 0;
+  /// Observed order of the two finest asymptotic levels (NaN with fewer than two).
+  double asymptotic_order = 0.0;
+  /// From the three finest asymptotic levels (the three finest levels when fewer than three
+  /// are asymptotic: then its order is not the discretization's either).
+  Richardson richardson;
   bool converged() const;                ///< every FE solve converged
 };
 /// Solves the FE on each element count (increasing, a common refinement ratio), with the
@@ -150,6 +162,24 @@ struct OrderBracket {
 };
 /// Bracket for order 1 or 2 (std::invalid_argument otherwise).
 OrderBracket order_bracket(int order);
+
+/// Round-off floor estimate of the beam FE's positions on a mesh of `elements` elements of
+/// `order`: the displacement formulation resolves strains, differences of nodal positions, to
+/// about eps per node, so its Newton iteration stops at force residuals of order
+/// eps nodes max(EA, GA) (beam_fe round_off_floor, which allows 10 times that), which the
+/// bending compliance L^2 / min(EI) turns into eps nodes max(EA, GA) L^2 / min(EI) times L
+/// (measured on Mattiasson's cantilever, k = 5, quadratic: at EA L^2 / EI = 1e8, 1.9e-6 L at
+/// 128 elements against 5.7e-6 L; at 1e10, 1.4e-6 L at 16 elements against 7.3e-6 L). An
+/// upper estimate: Newton may happen to stop far below it.
+double fe_round_off_floor_m(const rod::RodModel& model, int order, int elements);
+
+/// Number of leading levels inside the asymptotic range: the range ends before the first
+/// level i >= 1 whose observed order (from levels i - 1, i) is below the bracket (or NaN,
+/// or the error grew) while its error is at most floors_m[i], i.e. where refinement stopped
+/// helping because the error reached the round-off floor. A low order above the floor is
+/// not explained by round-off and stays in the range (the order gates then fail).
+int asymptotic_level_count(const std::vector<double>& h, const std::vector<double>& errors,
+                           const OrderBracket& bracket, const std::vector<double>& floors_m);
 
 /// One row of a cross-check: an FE mesh against the shooting reference.
 struct CrossCheckRow {
