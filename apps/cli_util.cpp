@@ -3,10 +3,13 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "common/error.hpp"
 #include "common/grid.hpp"
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::app {
@@ -76,12 +79,32 @@ std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::s
   return std::make_shared<const tca::Tca>(p, std::move(m));
 }
 
-Output::Output(const std::string& path) {
-  if (path.empty() || path == "-") return;
-  file_ = std::make_unique<std::ofstream>(path);
-  if (!*file_) throw InputError("--out", path, "cannot be opened for writing");
+void require_count(long long value, const std::string& flag, long long lo, long long hi) {
+  require(value >= lo && value <= hi, flag, static_cast<double>(value),
+          fmt::format("must be an integer in [{}, {}]", lo, hi));
 }
 
-std::ostream& Output::stream() { return file_ ? *file_ : std::cout; }
+Output::Output(std::string path, std::string flag) : path_(std::move(path)), flag_(std::move(flag)) {
+  if (path_.empty() || path_ == "-") return;
+  // Checked before the work that fills the buffer, so a typo in the folder costs nothing.
+  const std::filesystem::path dir = std::filesystem::path(path_).parent_path();
+  std::error_code ec;
+  require(dir.empty() || std::filesystem::is_directory(dir, ec), flag_, path_,
+          "cannot be opened for writing: its folder does not exist");
+}
+
+std::ostream& Output::stream() {
+  if (path_.empty() || path_ == "-") return std::cout;
+  return buffer_;
+}
+
+void Output::commit() {
+  if (path_.empty() || path_ == "-") {
+    std::cout.flush();
+    if (!std::cout) throw InputError(flag_, "\"-\"", "could not be written to stdout");
+    return;
+  }
+  rod::write_file_atomically(path_, buffer_.str(), flag_);
+}
 
 }  // namespace tcasim::app

@@ -1,14 +1,31 @@
 #pragma once
-/// Helpers shared by the subcommands: value ranges and output destinations.
-#include <fstream>
+/// Helpers shared by the subcommands: value ranges, count bounds and output destinations.
 #include <iosfwd>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "tca/tca.hpp"
 
 namespace tcasim::app {
+
+/// Exit code of an input error (a bad flag or file), as main() maps InputError.
+inline constexpr int kExitInputError = 2;
+
+/// Upper bounds of the command-line counts, each with its reason.
+/// Fixed steps of the shooting integrator: RK4's error falls like N^-4 and reaches
+/// round-off near the 2048 steps of the validation reference; 100000 steps take about a
+/// second per solve, beyond that the run only burns time.
+inline constexpr int kMaxSteps = 100000;
+/// FE elements: quadratic elements reach round-off near 1000 elements on the shipped
+/// scenarios (validate_convergence); 10000 keeps one solve within seconds and memory small.
+inline constexpr int kMaxElements = 10000;
+/// Model evaluations of `tcasim fit` (each a TCA curve, microseconds): 100000 is minutes.
+inline constexpr int kMaxEvaluations = 100000;
+
+/// Requires lo <= value <= hi for the count given by `flag` (`--steps = 1e9 must be ...`).
+void require_count(long long value, const std::string& flag, long long lo, long long hi);
 
 /// Parses "A:B:S" (start, stop, step; the inclusive grid of common/grid.hpp) or a single
 /// value "A". `flag` names the option in error messages.
@@ -20,14 +37,20 @@ std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::s
                                            const std::string& material_name,
                                            const std::string& f12_form);
 
-/// An output stream: the file at `path`, or stdout when path is empty or "-".
+/// An output destination: stdout when `path` is empty or "-" (written as it comes), else
+/// the file at `path`, written whole by commit() (rod/output_file.hpp): a run that fails
+/// before commit() leaves no partial file and any existing file untouched.
 class Output {
  public:
-  explicit Output(const std::string& path);
+  explicit Output(std::string path, std::string flag = "--out");
   std::ostream& stream();
+  /// Writes the buffered text to the file atomically (stdout: flushes). Throws InputError
+  /// naming the flag when the file cannot be written.
+  void commit();
 
  private:
-  std::unique_ptr<std::ofstream> file_;
+  std::string path_, flag_;
+  std::ostringstream buffer_;
 };
 
 }  // namespace tcasim::app

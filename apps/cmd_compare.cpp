@@ -27,8 +27,8 @@ constexpr int kExitNotConverged = 4;
 
 void progress(const std::string& what) { fmt::print(stderr, "  {}\n", what); }
 
-/// Parses "A,B,C" into positive integers; `flag` names the option in messages.
-std::vector<int> parse_counts(const std::string& text, const std::string& flag) {
+/// Parses "A,B,C" into integers in [1, max]; `flag` names the option in messages.
+std::vector<int> parse_counts(const std::string& text, const std::string& flag, int max) {
   std::vector<int> out;
   std::size_t start = 0;
   while (start <= text.size()) {
@@ -41,8 +41,8 @@ std::vector<int> parse_counts(const std::string& text, const std::string& flag) 
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || used != item.size() || v < 1) {
-      throw InputError(flag, text, "must be a comma-separated list of integers >= 1");
+    if (used == 0 || used != item.size() || v < 1 || v > max) {
+      throw InputError(flag, text, fmt::format("must be a comma-separated list of integers in [1, {}]", max));
     }
     out.push_back(v);
     start = end + 1;
@@ -57,6 +57,12 @@ rod::RodModel load_supported(const std::string& path) {
     throw InputError("scenario", path, "cannot be solved by both solvers: " + *why);
   }
   return model;
+}
+
+/// --reference-steps: the RK4 reference halves its steps for its error estimate.
+void require_reference_steps(int steps) {
+  require(steps >= 4 && steps <= kMaxSteps && steps % 4 == 0, "--reference-steps", steps,
+          fmt::format("must be a multiple of 4 in [4, {}] (steps and steps / 2 even)", kMaxSteps));
 }
 
 void print_reference(std::FILE* f, const xc::Reference& ref, int steps) {
@@ -85,9 +91,10 @@ void add_compare_command(CLI::App& app) {
                 "FE Newton at beam_fe's default tolerances (default: tightened, as the validation)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
   cmd->callback([flags] {
+    require_reference_steps(flags->reference.steps);
     const rod::RodModel model = load_supported(flags->scenario);
-    const std::vector<int> elements = parse_counts(flags->elements, "--elements");
-    const std::vector<int> orders = parse_counts(flags->orders, "--orders");
+    const std::vector<int> elements = parse_counts(flags->elements, "--elements", kMaxElements);
+    const std::vector<int> orders = parse_counts(flags->orders, "--orders", 2);
     std::vector<xc::FeSettings> meshes;
     for (int order : orders) {
       require(order == 1 || order == 2, "--orders", order, "must be 1 or 2");
@@ -109,7 +116,7 @@ void add_compare_command(CLI::App& app) {
       out.stream() << xc::crosscheck_csv_row(r, ref, flags->reference.steps);
       all = all && r.converged;
     }
-    out.stream().flush();
+    out.commit();
     if (!all) {
       fmt::print(stderr, "tcasim compare: a solve did not converge (converged = 0 in the CSV)\n");
       throw CLI::RuntimeError(kExitNotConverged);
@@ -136,10 +143,18 @@ void add_converge_command(CLI::App& app) {
   cmd->add_option("--reference-steps", flags->reference.steps, "RK4 steps of the shooting reference (default 2048)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout; the table goes to stderr)");
   cmd->callback([flags] {
+    require_reference_steps(flags->reference.steps);
     require(flags->levels >= 3, "--levels", flags->levels, "must be >= 3 (Richardson needs three meshes)");
+    require_count(flags->coarsest, "--coarsest", 0, kMaxElements);
     const rod::RodModel model = load_supported(flags->scenario);
     const int coarsest =
         flags->coarsest > 0 ? flags->coarsest : xc::study_levels(model.name, flags->order, false).coarsest;
+    // The finest mesh has coarsest 2^(levels - 1) elements.
+    long long finest = coarsest;
+    for (int k = 1; k < flags->levels && finest <= kMaxElements; ++k) finest *= 2;
+    require(finest <= kMaxElements, "--levels", flags->levels,
+            fmt::format("must keep the finest mesh, {} x 2^(levels - 1) elements, <= {}", coarsest,
+                        kMaxElements));
     xc::FeSettings tol = xc::tight_tolerances();
     tol.order = flags->order;
     progress(model.name + ": shooting reference");
@@ -152,7 +167,7 @@ void add_converge_command(CLI::App& app) {
                study.measured_s_m, b.expected, b.tolerance, xc::convergence_table(study));
     Output out(flags->out);
     out.stream() << xc::convergence_csv_header() << xc::convergence_csv_rows(model.name, study);
-    out.stream().flush();
+    out.commit();
     if (!study.converged() || !ref.converged()) {
       fmt::print(stderr, "tcasim converge: a solve did not converge (converged = 0 in the CSV)\n");
       throw CLI::RuntimeError(kExitNotConverged);

@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -14,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "rod/output_file.hpp"
 #include "rod/result.hpp"
 #include "tca/calibration.hpp"
 #include "tca/tca.hpp"
@@ -58,6 +58,7 @@ json material_json(const tca::Material& m, const std::string& source) {
 }
 
 void run_fit(const FitOptions& o) {
+  require_count(o.max_evaluations, "--max-evaluations", 1, kMaxEvaluations);
   const auto tca = select_tca(o.tca_file, o.id, o.material, o.f12_form);
   const auto data = tca::read_measurements_csv(o.data);
   std::vector<tca::FitParameter> fit;
@@ -105,9 +106,7 @@ void run_fit(const FitOptions& o) {
     j["material"] = material_json(
         r.material, fmt::format("tcasim fit of {} to {} (initial material: {})",
                                 fmt::join(o.fit, ","), o.data, tca->material().source));
-    std::ofstream file(o.out);
-    require(static_cast<bool>(file), "--out", o.out, "cannot be opened for writing");
-    file << rod::format_json(j) << "\n";
+    rod::write_file_atomically(o.out, rod::format_json(j) + "\n", "--out");
   }
   if (r.status == tca::CalibrationStatus::kFailed) {
     throw DomainError("calibration failed: " + r.message);
@@ -144,8 +143,7 @@ void add_fit_command(CLI::App& app) {
       ->check(CLI::IsMember({"paper", "castigliano"}));
   cmd->add_option("--max-evaluations", opts->max_evaluations,
                   "Maximum model evaluations of the least-squares solver")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->capture_default_str();
   cmd->add_option("--out", opts->out,
                   "Write the result (schema tcasim.fit/1, with the fitted material in the "
                   "data/materials format) to this JSON file");

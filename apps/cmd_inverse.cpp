@@ -49,7 +49,7 @@ nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 void write_json(const nlohmann::json& j, const std::string& path) {
   Output out(path);
   out.stream() << rod::format_json(j) << "\n";
-  out.stream().flush();
+  out.commit();
 }
 
 }  // namespace

@@ -62,7 +62,8 @@ cosserat::Options cosserat_options(const IntegratorFlags& f) {
     o.integrator.relative_tolerance = f.rtol;
     o.integrator.absolute_tolerance = f.rtol * 1e-3;
   } else if (f.steps != 0) {
-    require(f.steps >= 2 && f.steps % 2 == 0, "--steps", f.steps, "must be an even number >= 2");
+    require(f.steps >= 2 && f.steps <= kMaxSteps && f.steps % 2 == 0, "--steps", f.steps,
+            fmt::format("must be an even number in [2, {}]", kMaxSteps));
     o.integrator.steps = f.steps;
   }
   // RK8's coarse level: 2 steps are about as accurate as RK6's 4 (its Jacobians start the
@@ -89,7 +90,7 @@ void add_fe_flags(CLI::App* cmd, FeFlags& f) {
 
 /// The FE options of the flags; a bad value is reported under its flag's name.
 beam_fe::Options fe_options(const FeFlags& f) {
-  require(f.elements >= 1, "--elements", f.elements, "must be >= 1");
+  require_count(f.elements, "--elements", 1, kMaxElements);
   require(f.order == 1 || f.order == 2, "--order", f.order, "must be 1 or 2");
   beam_fe::Options o;
   o.elements = f.elements;
@@ -252,7 +253,7 @@ void add_sweep_command(CLI::App& app) {
                    k + 1 == values.size() ? "\n" : "");
       }
     }
-    os.flush();
+    out.commit();
     if (failures > 0) {
       fmt::print(stderr, "tcasim sweep: {} of {} points did not converge (converged = 0 in the CSV)\n",
                  failures, values.size());

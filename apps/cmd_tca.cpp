@@ -59,6 +59,7 @@ void run_tca(const TcaOptions& o) {
     fmt::print(out, "{},{},{},{},{}\n", temps_degC[i], p.elongation_m,
                p.tension_N, units::rad_to_deg(p.pitch_angle_rad), p.coils_closed ? 1 : 0);
   }
+  output.commit();
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 
@@ -21,11 +22,15 @@ int main(int argc, char** argv) {
   tcasim::app::add_converge_command(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return app.exit(e);  // a subcommand's own exit code (e.g. 4: not converged)
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // A malformed command line is an input error like a bad file (--help exits 0).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : tcasim::app::kExitInputError;
   } catch (const tcasim::InputError& e) {
     fmt::print(stderr, "tcasim: input error: {}\n", e.what());
-    return 2;
+    return tcasim::app::kExitInputError;
   } catch (const tcasim::DomainError& e) {
     fmt::print(stderr, "tcasim: outside the model's domain: {}\n", e.what());
     return 3;

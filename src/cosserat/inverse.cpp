@@ -68,6 +68,18 @@ int unknown_index(const rod::RodModel& m, int i) {
   return k;
 }
 
+/// The inverse and grasp solvers adjust one temperature per TCA: a segmented drive (one
+/// temperature per segment) is refused rather than silently made uniform.
+void require_uniform_temperature(const rod::RodModel& m, int i) {
+  const rod::Drive& d = m.actuators[i].drive;
+  if (d.type != rod::Drive::Type::kTca || !d.segmented) return;
+  throw InputError("actuators[" + std::to_string(i) + "].drive.segments",
+                   "(" + std::to_string(d.segments.size()) + " segments)",
+                   "cannot be adjusted by the inverse and grasp solvers, which set one temperature per "
+                   "TCA: give '" + m.actuators[i].name + "' a uniform temperature_degC, or leave it out "
+                   "of the adjusted actuators");
+}
+
 double get_variable(const rod::RodModel& m, const Actuation& a, int i) {
   return is_tca(m, i) ? a.actuators[i].segments.front().temperature_K : a.actuators[i].tension_N;
 }
@@ -379,6 +391,7 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
   for (int i : res.actuators) {
     require(i >= 0 && i < static_cast<int>(model.actuators.size()), "options.actuators", i,
             "must index a model actuator");
+    require_uniform_temperature(model, i);
   }
   const std::vector<int>& vars = res.actuators;
   const int nq = static_cast<int>(vars.size());
@@ -573,6 +586,7 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
     if (is_tca(model, i)) { act = i; ++n_tca; }
   }
   require(n_tca == 1, "actuators", n_tca, "grasp needs exactly one TCA-driven actuator per finger");
+  require_uniform_temperature(model, act);
   Eigen::VectorXd lo, hi;
   actuation_bounds(model, {act}, options.max_temperature_K,
                    std::numeric_limits<double>::infinity(), lo, hi);

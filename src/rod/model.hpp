@@ -75,8 +75,12 @@ struct Actuator {
   Routing routing;
   int count = 1;
   Drive drive;
-  /// Rest length of one string [m]: the TCA's coiled length for a TCA drive, the
-  /// reference path length int_0^L ||e3 + r'|| ds for a tension drive.
+  /// TCA drive: the TCA's elongation in the reference configuration [m] (signed; the
+  /// scenario's `pre_elongation_m`, 0 when absent: the coiled length is the path length).
+  double pre_elongation_m = 0.0;
+  /// Rest length of one string [m], what the solvers subtract from the current path length
+  /// to get the elongation: the reference path length int_0^L |e3 + omega* x r + r'| ds
+  /// (rod/reference_path.hpp), less pre_elongation_m for a TCA drive.
   double rest_length_m = 0.0;
   /// L_i of Eq. (18): rest_length_m / body length.
   double length_ratio = 1.0;

@@ -6,13 +6,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cassert>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 
 #include "common/error.hpp"
+#include "rod/output_file.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
 
@@ -255,17 +253,7 @@ void write_result(const Result& result, const std::string& path) {
     if (!std::cout) throw InputError("result file", "\"-\"", "could not be written to stdout");
     return;
   }
-  std::ofstream out(path);
-  if (!out) {
-    throw InputError("result file", json(path).dump(),
-                     fmt::format("cannot be opened for writing: {}", std::strerror(errno)));
-  }
-  out << text;
-  out.close();
-  if (!out) {
-    throw InputError("result file", json(path).dump(),
-                     fmt::format("could not be written: {}", std::strerror(errno)));
-  }
+  write_file_atomically(path, text, "result file");
 }
 
 std::optional<double> three_point_inner_radius(const RodModel& model, const std::vector<double>& s_m,

@@ -6,12 +6,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -19,6 +17,8 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "rod/json_file.hpp"
+#include "rod/reference_path.hpp"
 
 #ifndef TCASIM_DATA_DIR
 #error "TCASIM_DATA_DIR must be defined by the build (src/rod/CMakeLists.txt)"
@@ -41,6 +41,21 @@ constexpr double kEdgeRelativeTolerance = 1e-12;
 constexpr std::size_t kMaxValueChars = 80;
 /// Number of temperatures at which a material law is checked over its valid range.
 constexpr int kMaterialRangeSamples = 201;
+/// A TCA's coiled length must equal its string's reference path length within this
+/// relative amount unless the actuator gives pre_elongation_m (docs/scenario-format.md):
+/// far above the round-off of the path length, below any intended pre-elongation (1 um on 1 m).
+constexpr double kCoiledLengthRelativeTolerance = 1e-6;
+/// Upper bounds on counts, each with its reason. Parallel strings of one actuator: a
+/// U-shaped TCA is 2 and each string needs its own channel in the section, so more than
+/// 1000 cannot be a string actuator.
+constexpr int kMaxCount = 1000;
+/// Actuators of one rod: the shooting Newton system is dense in the TCA tensions (6 + n
+/// unknowns) and every right-hand side loops over all strings; the paper's robots have
+/// 1 to 4, and 256 keeps one solve within seconds.
+constexpr std::size_t kMaxActuators = 256;
+/// Segments of one TCA drive: every tension evaluation solves the series of all segments;
+/// 1000 resolves any temperature profile far below the TCA's own length scale.
+constexpr std::size_t kMaxSegments = 1000;
 
 const std::string kScenarioSchema = "tcasim.scenario/1";
 const std::string kTcasSchema = "tcasim.tcas/1";
@@ -180,18 +195,6 @@ std::string peek_choice(const json& j, const std::string& path, const std::strin
     throw InputError(key, quote(s), fmt::format("must be one of: {}", fmt::join(options, ", ")));
   }
   return s;
-}
-
-json read_json_file(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) {
-    throw InputError(what, quote(path), fmt::format("cannot be opened: {}", std::strerror(errno)));
-  }
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(what, quote(path), fmt::format("is not valid JSON: {}", e.what()));
-  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -542,6 +545,10 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
     throw InputError(o.key("segments"), show(segs),
                      "must be a non-empty array of {\"fraction\", \"temperature_degC\"}");
   }
+  if (segs.size() > kMaxSegments) {
+    throw InputError(o.key("segments"), fmt::format("(an array of {} segments)", segs.size()),
+                     fmt::format("must have at most {} segments", kMaxSegments));
+  }
   double sum = 0.0;
   for (std::size_t i = 0; i < segs.size(); ++i) {
     const Obj so(segs[i], fmt::format("{}[{}]", o.key("segments"), i), {"fraction", "temperature_degC"});
@@ -556,33 +563,79 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   return d;
 }
 
+/// The rest length of one string of `a` (docs/scenario-format.md, "Rest length and
+/// regularity"): the reference path length, less the TCA's pre-elongation for a TCA drive.
+/// Refuses a reference path that folds, a coiled length that does not match the path
+/// without a pre_elongation_m, and a pre-elongation the TCA cannot have.
+double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
+  const ReferencePath ref = reference_path(a.routing, model.reference_curvature_B_1_m, model.length_m);
+  const bool straight = a.routing.type == Routing::Type::kStraight;
+  const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
+  require(ref.min_axial > 0.0, routing_key,
+          straight ? show(o.required("routing").at("offset_m")) : format_value(a.routing.radius_m),
+          fmt::format("makes the reference string path fold on the precurved body: e3 . (e3 + "
+                      "omega* x r + r') = {} at s = {} m, must be > 0 (for a straight string: the "
+                      "offset toward the centre of curvature times |omega*_perp| must be < 1)",
+                      fmt::format("{:.6g}", ref.min_axial), fmt::format("{:.6g}", ref.min_axial_s_m)));
+  const bool has_pre = o.has("pre_elongation_m");
+  if (a.drive.type != Drive::Type::kTca) {
+    if (has_pre) {
+      throw InputError(o.key("pre_elongation_m"), show(o.required("pre_elongation_m")),
+                       "applies only to a TCA drive (a tension drive's rest length is its path length)");
+    }
+    return ref.length_m;
+  }
+  const tca::Parameters& p = a.drive.tca->parameters();
+  const std::string coiled_key = fmt::format("tcas.{}.coiled_length_m", a.drive.tca_id);
+  if (!has_pre) {
+    const double mismatch = (p.coiled_length_m - ref.length_m) / ref.length_m;
+    require(std::abs(mismatch) <= kCoiledLengthRelativeTolerance, coiled_key, p.coiled_length_m,
+            fmt::format("must equal the reference path length {} m of {} (within {} relative; it "
+                        "differs by {:.3g}), or {} must give the TCA's elongation there",
+                        fmt::format("{:.10g}", ref.length_m), o.path(), kCoiledLengthRelativeTolerance, mismatch,
+                        o.key("pre_elongation_m")));
+    return ref.length_m;
+  }
+  const double pre = a.pre_elongation_m;
+  const std::string pre_key = o.key("pre_elongation_m");
+  if (p.kind == tca::Kind::kExtension) {
+    require(pre >= 0.0, pre_key, pre,
+            "must be >= 0 for an extension TCA (its coils cannot be shorter than closed)");
+  }
+  // delta = l (sin alpha - sin alpha0) with alpha in (0, 90) deg: -L < delta < l - L.
+  require(pre > -p.coiled_length_m && pre < p.fiber_length_m - p.coiled_length_m, pre_key, pre,
+          fmt::format("must lie in (-coiled_length_m, fiber_length_m - coiled_length_m) = ({}, {}) m "
+                      "of TCA '{}' (a coil between flat and straight)",
+                      format_value(-p.coiled_length_m), format_value(p.fiber_length_m - p.coiled_length_m),
+                      a.drive.tca_id));
+  require(pre < ref.length_m, pre_key, pre,
+          fmt::format("must be below the reference path length {} m (the rest length must be positive)",
+                      fmt::format("{:.10g}", ref.length_m)));
+  return ref.length_m - pre;
+}
+
 Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model) {
-  const Obj o(j, path, {"name", "comment", "routing", "count", "drive"});
+  const Obj o(j, path, {"name", "comment", "routing", "count", "drive", "pre_elongation_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
   a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section);
   if (o.has("count")) {
+    // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
+    // possibly); 1e9 or 2.0 are floats, which are refused.
     const json& c = o.required("count");
-    if (!c.is_number_integer()) {
-      throw InputError(o.key("count"), show(c), "must be an integer");
-    }
-    const auto n = c.get<long long>();
-    if (n < 1 || n > std::numeric_limits<int>::max()) {
-      throw InputError(o.key("count"), show(c), "must be an integer >= 1");
+    const bool small = c.is_number_unsigned() ? c.get<unsigned long long>() <= static_cast<unsigned long long>(kMaxCount)
+                                              : c.is_number_integer();
+    const long long n = small ? c.get<long long>() : 0;
+    if (n < 1 || n > kMaxCount) {
+      throw InputError(o.key("count"), show(c), fmt::format("must be an integer in [1, {}]", kMaxCount));
     }
     a.count = static_cast<int>(n);
   }
   a.drive = parse_drive(o.required("drive"), o.key("drive"), model);
-  if (a.drive.type == Drive::Type::kTca) {
-    a.rest_length_m = a.drive.tca->parameters().coiled_length_m;
-  } else if (a.routing.type == Routing::Type::kStraight) {
-    // int_0^L ||e3 + r'|| ds with r' = 0.
-    a.rest_length_m = model.length_m;
-  } else {
-    // Helix: ||e3 + r'(s)|| = sqrt(1 + (2 pi k R)^2) is constant along s.
-    const double w = 2.0 * units::kPi * a.routing.turns_per_m * a.routing.radius_m;
-    a.rest_length_m = std::sqrt(1.0 + w * w) * model.length_m;
+  if (a.drive.type == Drive::Type::kTca && o.has("pre_elongation_m")) {
+    a.pre_elongation_m = o.number("pre_elongation_m");
   }
+  a.rest_length_m = rest_length(o, a, model);
   // [Pawlowski2019] Eq. (18): L_i = rest length / body length.
   a.length_ratio = a.rest_length_m / model.length_m;
   return a;
@@ -634,7 +687,7 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
   }
   if (o.has("f12_form")) m.f12_form = parse_f12_form(o);
 
-  if (o.has("valid_range_degC")) {
+  {
     const Eigen::Vector2d r = o.vector2("valid_range_degC");
     const std::string rk = o.key("valid_range_degC");
     above_absolute_zero_K(r[0], rk + "[0]");
@@ -749,6 +802,10 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
     if (!acts.is_array()) {
       throw InputError("actuators", show(acts),
                        fmt::format("must be an array of actuator objects, not {}", type_name(acts)));
+    }
+    if (acts.size() > kMaxActuators) {
+      throw InputError("actuators", fmt::format("(an array of {} actuators)", acts.size()),
+                       fmt::format("must have at most {} actuators", kMaxActuators));
     }
     for (std::size_t i = 0; i < acts.size(); ++i) {
       const std::string path = fmt::format("actuators[{}]", i);

@@ -2,13 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 #include "common/error.hpp"
+#include "rod/output_file.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -34,18 +32,6 @@ std::string csv_field(const std::string& s) {
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-void write_text(const std::string& text, const std::string& path, const std::string& key) {
-  std::ofstream out(path);
-  if (!out) {
-    throw InputError(key, "\"" + path + "\"", fmt::format("cannot be opened for writing: {}", std::strerror(errno)));
-  }
-  out << text;
-  out.close();
-  if (!out) {
-    throw InputError(key, "\"" + path + "\"", fmt::format("could not be written: {}", std::strerror(errno)));
-  }
 }
 
 }  // namespace
@@ -148,7 +134,7 @@ std::string vtp_document(const RodModel& model, const Result& result) {
 }
 
 void write_vtp(const RodModel& model, const Result& result, const std::string& path) {
-  write_text(vtp_document(model, result), path, "vtk file");
+  write_file_atomically(path, vtp_document(model, result), "vtk file");
 }
 
 std::string shape_csv_document(const RodModel& model, const Result& result) {
@@ -165,7 +151,7 @@ std::string shape_csv_document(const RodModel& model, const Result& result) {
 }
 
 void write_shape_csv(const RodModel& model, const Result& result, const std::string& path) {
-  write_text(shape_csv_document(model, result), path, "shape csv file");
+  write_file_atomically(path, shape_csv_document(model, result), "shape csv file");
 }
 
 }  // namespace tcasim::rod

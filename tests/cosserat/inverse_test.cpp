@@ -389,5 +389,30 @@ TEST(InverseRejections, BadInputsNameTheFlagValueAndRule) {
   expect_input_error([&] { inverse_from_rest(m, Vector3d(0, 0, 0.04), io); }, "max_temperature_degC");
 }
 
+TEST(InverseRejections, SegmentedTcaIsRefusedNotReducedToItsFirstSegment) {
+  // Was silently solved with every segment at the first segment's temperature.
+  const auto segment = [](rod::RodModel& m, int i) {
+    rod::Drive& d = m.actuators[static_cast<std::size_t>(i)].drive;
+    const double t_K = d.segments.front().temperature_K;
+    d.segments = {tca::Segment{0.4, t_K}, tca::Segment{0.6, t_K + 20.0}};
+    d.segmented = true;
+  };
+  rod::RodModel m = tca_rod({0.0, 90.0}, {25.0, 25.0});
+  segment(m, 1);
+  expect_input_error([&] { inverse_from_rest(m, Vector3d(0, 0, 0.04), InverseOptions{}); },
+                     "actuators[1].drive.segments");
+  // Held at its segments while only the uniform TCA is adjusted: allowed.
+  InverseOptions only_first;
+  only_first.actuators = {0};
+  EXPECT_NO_THROW(inverse_from_rest(m, Vector3d(0, 0, 0.04), only_first));
+
+  rod::RodModel finger = gripper_finger();
+  segment(finger, 0);
+  GraspOptions o;
+  o.mass_kg = 1e-3;
+  o.friction = 1.1;
+  expect_input_error([&] { solve_grasp(finger, rk4(), o); }, "actuators[0].drive.segments");
+}
+
 }  // namespace
 }  // namespace tcasim::cosserat

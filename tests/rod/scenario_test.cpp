@@ -2,6 +2,8 @@
 // docs/scenario-format.md rejects a bad value with its key path, value and rule.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -51,14 +53,16 @@ const char* const kFullScenario = R"({
       "comment": "the 3-thread TCA of Sec. V-A",
       "material": {"source": "inline test values", "reference_temperature_degC": 25,
                    "youngs_modulus_Pa": 1.2e9, "shear_modulus_Pa": 2.2e8,
-                   "diameter": {"linear_expansion_1_K": 1.0e-4}, "f12_form": "paper"}
+                   "diameter": {"linear_expansion_1_K": 1.0e-4}, "f12_form": "paper",
+                   "valid_range_degC": [0, 150]}
     }
   },
   "actuators": [
     {"name": "tca", "routing": {"type": "straight", "offset_m": [0.003, 0.0]}, "count": 1,
+     "pre_elongation_m": 3e-5,
      "drive": {"type": "tca", "tca": "manipulator-tca", "temperature_degC": 90}},
     {"name": "u-shaped", "comment": "two strings", "routing": {"type": "straight", "offset_m": [0, -0.002]},
-     "count": 2,
+     "count": 2, "pre_elongation_m": 0.002,
      "drive": {"type": "tca", "tca": "gripper-tca",
                "segments": [{"fraction": 0.25, "temperature_degC": 60},
                             {"fraction": 0.75, "temperature_degC": 120}]}},
@@ -161,8 +165,9 @@ TEST(ParseScenario, FullScenarioGivesTheTcasAndActuators) {
   ASSERT_EQ(a0.drive.segments.size(), 1u);
   EXPECT_EQ(a0.drive.segments[0].fraction, 1.0);
   EXPECT_NEAR(a0.drive.segments[0].temperature_K, 363.15, 1e-12);
-  EXPECT_EQ(a0.rest_length_m, 0.040);  // the TCA's coiled length
-  EXPECT_EQ(a0.length_ratio, 1.0);
+  // Reference path L (1 - omega*_y r_x) = 0.040 x 1.00075 less the pre-elongation 3e-5.
+  EXPECT_NEAR(a0.rest_length_m, 0.040 * 1.00075 - 3e-5, kRoundOff);
+  EXPECT_NEAR(a0.length_ratio, a0.rest_length_m / 0.040, kRoundOff);
 
   const Actuator& a1 = m.actuators[1];
   EXPECT_EQ(a1.count, 2);
@@ -170,8 +175,9 @@ TEST(ParseScenario, FullScenarioGivesTheTcasAndActuators) {
   ASSERT_EQ(a1.drive.segments.size(), 2u);
   EXPECT_EQ(a1.drive.segments[1].fraction, 0.75);
   EXPECT_NEAR(a1.drive.segments[1].temperature_K, 393.15, 1e-12);
-  EXPECT_EQ(a1.rest_length_m, 0.110);
-  EXPECT_NEAR(a1.length_ratio, 0.110 / 0.040, kRoundOff);
+  // Reference path L (1 + omega*_x r_y) = 0.040 x 0.999 less the pre-elongation 0.002.
+  EXPECT_NEAR(a1.rest_length_m, 0.040 * 0.999 - 0.002, kRoundOff);
+  EXPECT_NEAR(a1.length_ratio, a1.rest_length_m / 0.040, kRoundOff);
 
   const Actuator& a2 = m.actuators[2];
   EXPECT_EQ(a2.routing.type, Routing::Type::kHelix);
@@ -186,14 +192,17 @@ TEST(ParseScenario, FullScenarioGivesTheTcasAndActuators) {
 TEST(ParseScenario, TendonRestLengthIsThePathLengthByQuadrature) {
   const RodModel m = parse_scenario(full());
   const Actuator& helix = m.actuators[2];
-  // Composite Simpson of ||e3 + r'(s)|| over [0, L] with the routing's own derivative:
-  // an independent check of the closed form (the integrand is smooth and periodic).
+  // Composite Simpson of |e3 + omega* x r + r'| over [0, L] with the routing's own r and
+  // derivative: an independent check of the reader's period-wise Gauss-Legendre quadrature
+  // (the integrand is smooth and periodic; the body is precurved).
   constexpr int kIntervals = 2000;
   const double h = m.length_m / kIntervals;
   double sum = 0.0;
   for (int i = 0; i <= kIntervals; ++i) {
     const double s = i * h;
-    const double f = (Eigen::Vector3d::UnitZ() + helix.routing.dr(s)).norm();
+    const double f = (Eigen::Vector3d::UnitZ() + m.reference_curvature_B_1_m.cross(helix.routing.r(s)) +
+                      helix.routing.dr(s))
+                         .norm();
     sum += f * ((i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0));
   }
   const double quadrature = sum * h / 3.0;
@@ -468,9 +477,40 @@ TEST(RejectScenario, UnknownSectionShape) {
 TEST(RejectScenario, CountNotAPositiveInteger) {
   json doc = full();
   doc["actuators"][1]["count"] = 0;
-  expect_rejected(doc, "actuators[1].count", "0", "must be an integer >= 1");
+  expect_rejected(doc, "actuators[1].count", "0", "must be an integer in [1, 1000]");
+  doc["actuators"][1]["count"] = -3;
+  expect_rejected(doc, "actuators[1].count", "-3", "must be an integer in [1, 1000]");
   doc["actuators"][1]["count"] = 1.5;
   expect_rejected(doc, "actuators[1].count", "1.5", "must be an integer");
+}
+
+TEST(RejectScenario, CountAboveTheBound) {
+  json doc = full();
+  doc["actuators"][1]["count"] = 1001;
+  expect_rejected(doc, "actuators[1].count", "1001", "must be an integer in [1, 1000]");
+  doc["actuators"][1]["count"] = 1000000000;  // was accepted and "converged"
+  expect_rejected(doc, "actuators[1].count", "1000000000", "must be an integer in [1, 1000]");
+  doc["actuators"][1]["count"] = 1e9;  // a JSON float
+  expect_rejected(doc, "actuators[1].count", "1000000000.0", "must be an integer in [1, 1000]");
+  doc["actuators"][1]["count"] = 1000;
+  EXPECT_EQ(parse_scenario(doc).actuators[1].count, 1000);
+}
+
+TEST(RejectScenario, TooManySegmentsOrActuators) {
+  json doc = full();
+  json segs = json::array();
+  for (int i = 0; i < 1001; ++i) segs.push_back({{"fraction", 1.0 / 1001}, {"temperature_degC", 60}});
+  doc["actuators"][1]["drive"]["segments"] = segs;
+  expect_rejected(doc, "actuators[1].drive.segments", "1001 segments", "must have at most 1000 segments");
+  doc = full();
+  json acts = json::array();
+  for (int i = 0; i < 257; ++i) {
+    json a = doc["actuators"][2];
+    a["name"] = "t" + std::to_string(i);
+    acts.push_back(a);
+  }
+  doc["actuators"] = acts;
+  expect_rejected(doc, "actuators", "257 actuators", "must have at most 256 actuators");
 }
 
 TEST(RejectScenario, DuplicateActuatorName) {
@@ -615,6 +655,16 @@ TEST(RejectScenario, MaterialPropertyMalformedOrNotPositive) {
   mat["valid_range_degC"] = {30, 200};  // excludes the 25 degC reference
   expect_rejected(doc, "tcas.manipulator-tca.material.reference_temperature_degC", "25",
                   "must lie inside valid_range_degC");
+}
+
+TEST(RejectScenario, MaterialWithoutValidRange) {
+  // An inline material without a range was taken as valid on [0 K, 1e9 K].
+  json doc = full();
+  doc["tcas"]["manipulator-tca"]["material"].erase("valid_range_degC");
+  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC", "(missing)", "is required");
+  doc = full();
+  doc["tcas"]["manipulator-tca"]["material"]["valid_range_degC"] = {-300, 200};
+  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC[0]", "-300", "below absolute zero");
 }
 
 }  // namespace

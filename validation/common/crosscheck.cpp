@@ -92,6 +92,7 @@ std::vector<std::string> scenario_files(const std::string& dir) {
   std::vector<std::string> paths;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
+    // Only a peek at the schema: each listed file is then read by read_scenario (strict).
     std::ifstream f(entry.path());
     const nlohmann::json j = nlohmann::json::parse(f, nullptr, /*allow_exceptions=*/false);
     if (j.is_object() && j.value("schema", std::string()) == "tcasim.scenario/1") {

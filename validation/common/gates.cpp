@@ -8,6 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "rod/output_file.hpp"
+
 namespace tcasim::validation {
 
 namespace {
@@ -48,13 +50,13 @@ int Gates::failures() const {
 void Gates::write_csv(const std::string& out_dir) const {
   std::filesystem::create_directories(out_dir);
   const std::string path = out_dir + "/gates.csv";
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path);
+  rod::AtomicOutput f(path, "gates csv");
   f << "program,gate,measured,bound,passed\n";
   for (const auto& r : records_) {
     fmt::print(f, "{},{},{},{},{}\n", csv_field(program_), csv_field(r.name), csv_field(r.measured),
                csv_field(r.bound), r.passed ? 1 : 0);
   }
+  f.commit();
 }
 
 int Gates::finish() const {

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "validation/common/crosscheck.hpp"
 #include "validation/common/gates.hpp"
@@ -89,7 +90,7 @@ int main(int argc, char** argv) {
     fmt::print("Step 2: shooting references (RK4 {} and {} steps, CVODE rtol {:.0e})\n", ref_settings.steps,
                ref_settings.steps / 2, ref_settings.cvode_rtol);
     std::vector<xc::Reference> references;
-    std::ofstream ref_csv(out_dir + "/reference.csv");
+    tcasim::rod::AtomicOutput ref_csv(out_dir + "/reference.csv", "reference csv");
     ref_csv << "scenario,steps,tip_x_m,tip_y_m,tip_z_m,self_error_m,cvode_diff_m,rk4_time_s,cvode_time_s,converged\n";
     for (const auto& model : models) {
       progress(model.name + ": reference");
@@ -102,10 +103,11 @@ int main(int argc, char** argv) {
                  ref_settings.steps, p.x(), p.y(), p.z(), r.self_error_m, r.cvode_difference_m, r.rk4.time_s,
                  r.cvode ? r.cvode->time_s : 0.0, r.converged() ? 1 : 0);
     }
+    ref_csv.commit();
 
     fmt::print("Step 3: FE studies (Newton tolerances abs {:.0e}, rel {:.0e}, plus beam_fe's round-off floor)\n",
                xc::tight_tolerances().tolerance_abs, xc::tight_tolerances().tolerance_rel);
-    std::ofstream csv(out_dir + "/convergence.csv");
+    tcasim::rod::AtomicOutput csv(out_dir + "/convergence.csv", "convergence csv");
     csv << xc::convergence_csv_header();
     struct Entry {
       std::string scenario;
@@ -124,9 +126,9 @@ int main(int argc, char** argv) {
         entries.push_back({models[m].name, xc::convergence_study(models[m], references[m], tol, elements, progress),
                            references[m].self_error_m, references[m].converged()});
         csv << xc::convergence_csv_rows(models[m].name, entries.back().study);
-        csv.flush();
       }
     }
+    csv.commit();
 
     fmt::print("Step 4: tables (error = |p_fe(L) - p_shooting(L)|)\n");
     for (const auto& e : entries) {

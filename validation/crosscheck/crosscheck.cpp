@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "validation/common/crosscheck.hpp"
 #include "validation/common/gates.hpp"
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
 
     fmt::print("Step 2: reference (RK4 {} / {} steps, CVODE rtol {:.0e}) and FE meshes\n", ref_settings.steps,
                ref_settings.steps / 2, ref_settings.cvode_rtol);
-    std::ofstream csv(out_dir + "/crosscheck.csv");
+    tcasim::rod::AtomicOutput csv(out_dir + "/crosscheck.csv", "crosscheck csv");
     csv << xc::crosscheck_csv_header();
     struct Entry {
       const tcasim::rod::RodModel* model;
@@ -100,9 +101,9 @@ int main(int argc, char** argv) {
       Entry e{&model, xc::shooting_reference(model, ref_settings), {}};
       e.rows = xc::cross_check(model, e.reference, meshes, progress);
       for (const auto& row : e.rows) csv << xc::crosscheck_csv_row(row, e.reference, ref_settings.steps);
-      csv.flush();
       entries.push_back(std::move(e));
     }
+    csv.commit();
 
     fmt::print("Step 3: table (FE - shooting; reference error = |p(N) - p(N/2)| / 15)\n");
     for (const auto& e : entries) {

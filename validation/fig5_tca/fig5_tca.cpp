@@ -41,6 +41,7 @@
 #include "common/error.hpp"
 #include "common/grid.hpp"
 #include "common/units.hpp"
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
@@ -217,11 +218,11 @@ int run(int argc, char** argv) {
 
   fmt::print("Step 5: write CSV to {}\n", out_dir);
   std::filesystem::create_directories(out_dir);
-  std::ofstream curves(out_dir + "/fig5_curves.csv");
+  tcasim::rod::AtomicOutput curves(out_dir + "/fig5_curves.csv", "fig5 curves csv");
   fmt::print(curves,
              "tca,load_g,material,f12_form,temperature_degC,elongation_m,pitch_angle_deg,"
              "coils_closed\n");
-  std::ofstream table(out_dir + "/fig5_table.csv");
+  tcasim::rod::AtomicOutput table(out_dir + "/fig5_table.csv", "fig5 table csv");
   fmt::print(table,
              "tca,load_g,material,f12_form,onset_temperature_degC,elongation_at_160_degC_m\n");
   for (const Case& c : cases) {
@@ -235,6 +236,8 @@ int run(int argc, char** argv) {
                c.onset_K ? fmt::format("{:.4f}", units::K_to_degC(*c.onset_K)) : "nan",
                c.curve.back().elongation_m);
   }
+  curves.commit();
+  table.commit();
 
   fmt::print("Step 6: table\n");
   fmt::print("{:<13} {:>6} {:<25} {:<12} {:>10} {:>14}\n", "tca", "load_g", "material",

@@ -40,6 +40,7 @@
 
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "validation/common/gates.hpp"
 
@@ -82,7 +83,7 @@ int main(int argc, char** argv) {
 
     fmt::print("Step 1: sweep 25..150 degC (step {} degC), {} manipulators x {} materials\n", step_degC,
                manipulators.size(), materials.size());
-    std::ofstream csv(out_dir + "/fig6_radius.csv");
+    tcasim::rod::AtomicOutput csv(out_dir + "/fig6_radius.csv", "fig6 csv");
     csv << "manipulator,material,temperature_degC,converged,iterations,bending_radius_m,tip_x_m,"
            "tip_y_m,tip_z_m,tension_N,elongation_m\n";
     std::map<std::pair<std::string, std::string>, std::vector<Point>> curves;
@@ -128,6 +129,7 @@ int main(int argc, char** argv) {
         }
       }
     }
+    csv.commit();
 
     fmt::print("Step 2: table (bending radius [mm]; '-' = straight)\n");
     fmt::print("{:<22} {:<26}", "manipulator", "material");

@@ -44,6 +44,7 @@
 
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/output_file.hpp"
 #include "validation/common/gates.hpp"
 #include "rod/scenario.hpp"
 
@@ -113,7 +114,7 @@ int main(int argc, char** argv) {
   temps.erase(std::unique(temps.begin(), temps.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
               temps.end());
 
-  std::ofstream csv(out_dir + "/fig8_force.csv");
+  tcasim::rod::AtomicOutput csv(out_dir + "/fig8_force.csv", "fig8 csv");
   fmt::print(csv, "material,temperature_degC,force_N,wire_taut,wire_lambda_N,pinned_force_N,"
                   "pinned_reaction_x_N,pinned_reaction_y_N,pinned_reaction_z_N,free_tip_x_m,free_tip_y_m,"
                   "free_tip_z_m,held_x_m,held_y_m,held_z_m,wire_x,wire_y,wire_z\n");
@@ -193,6 +194,7 @@ int main(int argc, char** argv) {
     gates.check(material + ": wire force strictly rising above the hold temperature", not_rising == 0,
                 fmt::format("{} points not rising", not_rising), "0");
   }
+  csv.commit();
   fmt::print("    CSV: {}/fig8_force.csv\n", out_dir);
   gates.write_csv(out_dir);
   return gates.finish();

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "cosserat/shooting.hpp"
+#include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
 #include "validation/common/gates.hpp"
@@ -142,6 +143,7 @@ int main(int argc, char** argv) {
     std::sort(files.begin(), files.end());
     std::vector<Row> rows;
     for (const auto& path : files) {
+      // Only a peek at the schema: each listed file is then read by read_scenario (strict).
       std::ifstream in(path);
       const nlohmann::json doc = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
       const std::string schema =
@@ -188,7 +190,7 @@ int main(int argc, char** argv) {
     fmt::print("Step 3: table (tip position [mm], imbalance relative to the load scale)\n");
     fmt::print("{:<22} {:<12} {:>4} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n", "scenario", "status", "it",
                "tip_x", "tip_y", "tip_z", "F_load[N]", "|dF|/F", "|dM|/FL", "time[s]");
-    std::ofstream csv(out_dir + "/shapes_summary.csv");
+    tcasim::rod::AtomicOutput csv(out_dir + "/shapes_summary.csv", "shapes csv");
     csv << "scenario,status,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m,load_scale_N,"
            "force_imbalance_N,moment_imbalance_Nm,force_imbalance_rel,moment_imbalance_rel,imbalance_8_steps,"
            "imbalance_16_steps,wall_time_s,base_x_m,base_y_m,"
@@ -216,6 +218,7 @@ int main(int argc, char** argv) {
                  row.main.summary.moment_imbalance_W_Nm.norm(), row.main.force_rel, row.main.moment_rel,
                  row.coarse.imbalance(), row.fine.imbalance(), row.wall_time_s, base, reason);
     }
+    csv.commit();
 
     fmt::print("Step 4: gates\n");
     tcasim::validation::Gates gates("validate_shapes");

@@ -42,6 +42,7 @@
 #include "common/units.hpp"
 #include "cosserat/inverse.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/output_file.hpp"
 #include "validation/common/gates.hpp"
 #include "rod/scenario.hpp"
 
@@ -187,7 +188,7 @@ int main(int argc, char** argv) {
   }
 
   const std::string csv = out_dir + "/table1_grasp.csv";
-  std::ofstream os(csv);
+  tcasim::rod::AtomicOutput os(csv, "table1 csv");
   fmt::print(os, "material,f12_form,calibration,mass_g,required_force_N,temperature_degC,"
                  "root_temperature_degC,measured_degC,paper_degC,blocked_force_rel_error,iterations,converged\n");
   for (const Row& r : rows) {
@@ -196,6 +197,7 @@ int main(int argc, char** argv) {
                r.mass_g, r.force_N, r.t_degC, r.root_degC, kMeasured_degC[k], kPaper_degC[k],
                r.force_rel_error, r.iterations, r.converged ? 1 : 0);
   }
+  os.commit();
   fmt::print("[4] table (temperatures in degC; measured 95/120/135, paper model 93.7/114.8/136.3)\n");
   fmt::print("    {:<26} {:<12} {:<26} {:>8} {:>8} {:>8}  {:>10} {:>9}\n", "material", "f12_form", "calibration",
              "1 g", "2 g", "3 g", "|T43-Troot|", "force err");
