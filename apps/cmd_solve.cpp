@@ -2,10 +2,10 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
+#include "common/progress.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/result.hpp"
@@ -212,8 +213,9 @@ void add_sweep_command(CLI::App& app) {
     for (const auto& a : model.actuators) fmt::print(os, ",{0}_tension_N,{0}_elongation_m", a.name);
     fmt::print(os, "\n");
 
-    const bool progress = values.size() >= 20;
-    const auto start = std::chrono::steady_clock::now();
+    // Long sweeps report progress on stderr: in place on a terminal, whole lines in a log.
+    std::optional<ProgressReporter> progress;
+    if (values.size() >= 20) progress.emplace(stderr, "tcasim sweep", values.size());
     int failures = 0;
     for (std::size_t k = 0; k < values.size(); ++k) {
       if (by_temperature) {
@@ -230,12 +232,7 @@ void add_sweep_command(CLI::App& app) {
                  r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
       for (const auto& a : r.actuators) fmt::print(os, ",{:.12e},{:.12e}", a.tension_N, a.elongation_m);
       fmt::print(os, "\n");
-      if (progress) {
-        const double secs =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        fmt::print(stderr, "\rtcasim sweep: {}/{} points, {:.2f} s{}", k + 1, values.size(), secs,
-                   k + 1 == values.size() ? "\n" : "");
-      }
+      if (progress) progress->update(k + 1);
     }
     os.flush();
     if (failures > 0) {
