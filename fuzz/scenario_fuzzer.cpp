@@ -104,11 +104,13 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
     std::abort();
   }
   c.dir = pattern;
-  std::filesystem::create_directories(c.dir / "materials");
-  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(TCASIM_SHIPPED_DATA_DIR) / "materials")) {
-    if (e.path().extension() == ".json") std::filesystem::copy_file(e.path(), c.dir / "materials" / e.path().filename());
+  const std::filesystem::path materials = c.dir / "materials";
+  std::filesystem::create_directories(materials);
+  const std::filesystem::path shipped = std::filesystem::path(TCASIM_SHIPPED_DATA_DIR) / "materials";
+  for (const auto& e : std::filesystem::directory_iterator(shipped)) {
+    if (e.path().extension() == ".json") std::filesystem::copy_file(e.path(), materials / e.path().filename());
   }
-  c.file = c.dir / "materials" / "fuzz.json";
+  c.file = materials / "fuzz.json";
   std::atexit(remove_dir);
   setenv("TCASIM_DATA_DIR", c.dir.c_str(), 1);
   if (const char* d = std::getenv("TCASIM_FUZZ_MAX_DEPTH")) c.max_depth = std::strtol(d, nullptr, 10);

@@ -6,8 +6,9 @@
 //   `tcasim.scenario/1` file in validation/scenarios/ (one a solver does not support is
 //   listed as not run with the solvers' own reason, and fails), the FE with quadratic and
 //   linear elements on refined meshes is compared with the shooting reference: tip position,
-//   tip rotation, the largest string tension and elongation differences, with wall times. Newton tolerances of the FE are
-//   tightened far below its defaults (crosscheck.cpp tight_tolerances()).
+//   tip rotation, the largest string tension and elongation differences, with wall times.
+//   Newton tolerances of the FE are tightened far below its defaults (crosscheck.cpp
+//   tight_tolerances()).
 // Reference
 //   Shooting with classical RK4 at 2048 steps; its error is estimated from a solve with 1024
 //   steps (|p(N) - p(N/2)| / 15) and reported with the CVODE (rtol 1e-12) difference.
