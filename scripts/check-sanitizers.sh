@@ -23,5 +23,13 @@ echo "check-sanitizers.sh: build took $((built - start)) s"
 # Leaks are reported too; a UBSan finding stops the process (no recovery) with a stack.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-ctest --test-dir "$build" -L "unit|validation" -LE slow -j "$jobs" --output-on-failure --timeout 1800 "$@"
+status=0
+ctest --test-dir "$build" -L "unit|validation" -LE slow -j "$jobs" --output-on-failure --timeout 1800 "$@" || status=$?
+# A test judged by its output (PASS_REGULAR_EXPRESSION) ignores its exit code: look for
+# sanitizer reports in the whole log too.
+if grep -qE "runtime error:|ERROR: AddressSanitizer|ERROR: LeakSanitizer" "$build/Testing/Temporary/LastTest.log"; then
+  echo "check-sanitizers.sh: sanitizer reports in $build/Testing/Temporary/LastTest.log" >&2
+  status=1
+fi
 echo "check-sanitizers.sh: tests took $(( $(date +%s) - built )) s"
+exit "$status"
