@@ -2,10 +2,10 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
+#include "common/progress.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/result.hpp"
@@ -222,8 +223,9 @@ void add_sweep_command(CLI::App& app) {
     }
     fmt::print(os, "\n");
 
-    const bool progress = values.size() >= 20;
-    const auto start = std::chrono::steady_clock::now();
+    // Long sweeps report progress on stderr: in place on a terminal, whole lines in a log.
+    std::optional<ProgressReporter> progress;
+    if (values.size() >= 20) progress.emplace(stderr, "tcasim sweep", values.size());
     int failures = 0;
     for (std::size_t k = 0; k < values.size(); ++k) {
       if (by_temperature) {
@@ -246,12 +248,7 @@ void add_sweep_command(CLI::App& app) {
         }
       }
       fmt::print(os, "\n");
-      if (progress) {
-        const double secs =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        fmt::print(stderr, "\rtcasim sweep: {}/{} points, {:.2f} s{}", k + 1, values.size(), secs,
-                   k + 1 == values.size() ? "\n" : "");
-      }
+      if (progress) progress->update(k + 1);
     }
     out.commit();
     if (failures > 0) {

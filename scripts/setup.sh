@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs every dependency of tcasim from Debian packages (bookworm).
 # Idempotent: when every package is already installed it only checks and exits.
-# Usage: scripts/setup.sh        (as root, or with sudo available)
+# Usage: scripts/setup.sh [PACKAGE...]   (as root, or with sudo available)
+#   PACKAGE: extra Debian packages a script alone needs (scripts/fuzz.sh passes clang-14
+#   and libFuzzer), installed the same way; the build itself needs none of them.
 set -euo pipefail
 
 packages=(
@@ -15,6 +17,7 @@ packages=(
   libfmt-dev             # fmt: formatting
   nlohmann-json3-dev     # nlohmann-json: scenario and result files
   python3-numpy python3-matplotlib   # plots (used through /usr/bin/python3)
+  "$@"
 )
 
 missing=()

@@ -58,26 +58,29 @@ TEST(Richardson, IdenticalLevelsGiveNoOrder) {
   EXPECT_EQ(r.value, u[2]);
 }
 
-rod::Result make_result(const Eigen::Vector3d& tip, const Eigen::Matrix3d& R, std::vector<double> tensions) {
+rod::Result make_result(const Eigen::Vector3d& tip, const Eigen::Matrix3d& R, std::vector<double> tensions,
+                        std::vector<double> elongations = {}) {
   rod::Result r;
   r.tip_position_W_m = tip;
   r.tip_R_WB = R;
-  for (double t : tensions) r.actuators.push_back({"a", t, 0.0});
+  elongations.resize(tensions.size(), 0.0);
+  for (std::size_t i = 0; i < tensions.size(); ++i) r.actuators.push_back({"a", tensions[i], elongations[i]});
   r.centerline_s_m = {0.0, 0.02, 0.04};
   r.centerline_p_W_m = {Eigen::Vector3d::Zero(), 0.5 * tip, tip};
   return r;
 }
 
-TEST(Difference, MeasuresTipDistanceRotationAngleAndLargestTensionGap) {
+TEST(Difference, MeasuresTipDistanceRotationAngleAndLargestTensionAndElongationGaps) {
   const double angle = 1e-9;  // small: acos of the trace would lose it
-  const rod::Result a = make_result({0, 0, 0.04}, Eigen::Matrix3d::Identity(), {1.0, -2.0});
+  const rod::Result a = make_result({0, 0, 0.04}, Eigen::Matrix3d::Identity(), {1.0, -2.0}, {1e-3, -2e-3});
   const rod::Result b =
-      make_result({3e-6, 4e-6, 0.04}, so3::exp(Eigen::Vector3d(0.0, angle, 0.0)), {1.5, -2.25});
+      make_result({3e-6, 4e-6, 0.04}, so3::exp(Eigen::Vector3d(0.0, angle, 0.0)), {1.5, -2.25}, {0.5e-3, -2.75e-3});
   const ResultDifference d = difference(a, b);
   EXPECT_NEAR(d.tip_m, 5e-6, kRoundOff);
   EXPECT_NEAR(d.mid_m, 2.5e-6, kRoundOff);
   EXPECT_NEAR(d.rotation_rad, angle, 1e-20);
   EXPECT_DOUBLE_EQ(d.max_tension_N, 0.5);
+  EXPECT_DOUBLE_EQ(d.max_elongation_m, 0.75e-3);
   EXPECT_EQ(d.reaction_N, 0.0);
 }
 
@@ -118,7 +121,7 @@ TEST(RefinementLevels, DoubleFromTheCoarsest) {
   EXPECT_THROW(refinement_levels(0, 3), InputError);
 }
 
-TEST(ScenarioFiles, ListsOnlyScenarioSchemaFilesSorted) {
+TEST(ScenarioFiles, ListsOnlyScenarioSchemaFilesSortedAndCountsTheExpectedSuite) {
   const auto dir = std::filesystem::temp_directory_path() / "tcasim_crosscheck_test";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
@@ -131,6 +134,10 @@ TEST(ScenarioFiles, ListsOnlyScenarioSchemaFilesSorted) {
   ASSERT_EQ(files.size(), 2u);
   EXPECT_EQ(std::filesystem::path(files[0]).filename(), "a.json");
   EXPECT_EQ(std::filesystem::path(files[1]).filename(), "b.json");
+  // The count a suite program must run: the scenario files, the names asked for, or a floor.
+  EXPECT_EQ(expected_scenarios(dir.string(), {}, 1), 2u);
+  EXPECT_EQ(expected_scenarios(dir.string(), {"a", "b", "missing"}, 1), 3u);
+  EXPECT_EQ(expected_scenarios(dir.string(), {}, kShippedSuiteScenarios), kShippedSuiteScenarios);
   std::filesystem::remove_all(dir);
   EXPECT_THROW(scenario_files(dir.string()), InputError);
 }

@@ -103,6 +103,10 @@ std::vector<std::string> scenario_files(const std::string& dir) {
   return paths;
 }
 
+std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only, std::size_t minimum) {
+  return std::max(only.empty() ? scenario_files(dir).size() : only.size(), minimum);
+}
+
 std::optional<std::string> unsupported_reason(const rod::RodModel& model) {
   // The cheapest solves of each solver: an unsupported feature is reported before any work.
   beam_fe::Summary::Status fe_status{};
@@ -131,7 +135,7 @@ std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<
     if (!only.empty() && std::find(only.begin(), only.end(), model.name) == only.end()) continue;
     if (auto why = unsupported_reason(model)) {
       skipped.emplace_back(model.name, *why);
-      fmt::print("  skipped {}: {}\n", model.name, *why);
+      fmt::print("  not run {}: {}\n", model.name, *why);
       continue;
     }
     fmt::print("  {} (L = {} m)\n", model.name, model.length_m);
@@ -174,6 +178,8 @@ ResultDifference difference(const rod::Result& a, const rod::Result& b) {
   d.rotation_rad = so3::log(R_ab).norm();
   for (std::size_t i = 0; i < a.actuators.size(); ++i) {
     d.max_tension_N = std::max(d.max_tension_N, std::abs(a.actuators[i].tension_N - b.actuators[i].tension_N));
+    d.max_elongation_m =
+        std::max(d.max_elongation_m, std::abs(a.actuators[i].elongation_m - b.actuators[i].elongation_m));
   }
   return d;
 }
@@ -335,15 +341,17 @@ std::vector<CrossCheckRow> cross_check(const rod::RodModel& model, const Referen
 std::string crosscheck_csv_header() {
   return "scenario,elements,order,tip_diff_m,tip_diff_over_L,rotation_diff_rad,max_tension_diff_N,"
          "cosserat_time_s,fe_time_s,converged,mid_diff_m,tip_reaction_diff_N,reference_steps,"
-         "reference_self_error_m,cvode_diff_m\n";
+         "reference_self_error_m,cvode_diff_m,max_elongation_diff_m\n";
 }
 
 std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference, int reference_steps) {
-  return fmt::format("{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{}\n", row.scenario,
+  return fmt::format("{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e}\n",
+                     row.scenario,
                      row.elements, row.order, row.diff.tip_m, row.diff.tip_m / row.length_m, row.diff.rotation_rad,
                      row.diff.max_tension_N, row.cosserat_time_s, row.fe_time_s, row.converged ? 1 : 0,
                      row.diff.mid_m, row.diff.reaction_N, reference_steps, reference.self_error_m,
-                     reference.cvode ? fmt::format("{:.6e}", reference.cvode_difference_m) : std::string());
+                     reference.cvode ? fmt::format("{:.6e}", reference.cvode_difference_m) : std::string(),
+                     row.diff.max_elongation_m);
 }
 
 std::string convergence_csv_header() {

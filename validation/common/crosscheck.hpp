@@ -9,6 +9,7 @@
 /// as a second opinion and its distance to the reference reported.
 /// Errors are Euclidean norms of the tip-position difference [m] (world frame).
 #include <Eigen/Core>
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,12 +26,22 @@ namespace tcasim::validation {
 /// sorted by file name. Throws InputError if `dir` is not a readable folder.
 std::vector<std::string> scenario_files(const std::string& dir);
 
+/// Scenarios of the shipped suite (validation/scenarios): a suite program run on the whole
+/// shipped folder must run at least these many, so a lost file fails its count gate instead
+/// of shrinking the suite unnoticed.
+constexpr std::size_t kShippedSuiteScenarios = 16;
+
+/// How many scenarios a suite program must run (Gates::expect_count): the names in `only`
+/// when it is not empty, else the `tcasim.scenario/1` files of `dir`, and at least `minimum`.
+std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only, std::size_t minimum);
+
 /// Why a model cannot be cross-checked, read from the solvers' own statuses (a cheap
 /// solve with each; FE kNotSupported or shooting kUnsupported); none when both support it.
 std::optional<std::string> unsupported_reason(const rod::RodModel& model);
 
 /// The suite: the scenario files of `dir` (restricted to the names in `only` when it is not
-/// empty) that both solvers support; the others are listed in `skipped` (name, reason).
+/// empty) that both solvers support; the others are listed in `skipped` (name, reason), for
+/// the program to report as not run (Gates::not_run).
 /// Prints one line per scenario.
 std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
                                       std::vector<std::pair<std::string, std::string>>& skipped);
@@ -51,6 +62,7 @@ struct ResultDifference {
   double reaction_N = 0.0;     ///< |tip reaction a - b| [N] (0 without a tip constraint)
   double rotation_rad = 0.0;   ///< |log(R_a(L)^T R_b(L))| [rad]
   double max_tension_N = 0.0;  ///< max over actuators of |T_a - T_b| (one string) [N]
+  double max_elongation_m = 0.0;  ///< max over actuators of |e_a - e_b| (one string) [m]
 };
 /// a - b as above; throws std::invalid_argument if the actuator counts differ.
 ResultDifference difference(const rod::Result& a, const rod::Result& b);

@@ -152,8 +152,12 @@ int main(int argc, char** argv) {
 
     fmt::print("Step 3: gates\n");
     tcasim::validation::Gates gates("validate_fig6_radius");
+    // Declared cases: every manipulator x material curve, each on the whole 25..150 degC grid.
+    const auto grid_points = static_cast<std::size_t>(std::lround(125.0 / step_degC)) + 1;
+    gates.expect_count("curves (manipulator x material)", curves.size(), manipulators.size() * materials.size());
     for (const auto& [key, curve] : curves) {
       const std::string label = key.first + " / " + key.second;
+      gates.expect_count(label + " temperatures", curve.size(), grid_points);
       int unconverged = 0;
       for (const auto& p : curve) unconverged += p.result.converged ? 0 : 1;
       gates.check(label + ": every point converges", unconverged == 0,

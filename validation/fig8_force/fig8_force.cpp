@@ -159,6 +159,7 @@ int main(int argc, char** argv) {
     // Step 4: gates and output.
     double previous = -1.0;
     int unconverged = 0, taut_below = 0, not_rising = 0;
+    std::size_t below = 0, above = 0;  // points the slack and rising gates check
     double force_at_hold = 0.0;
     fmt::print("    {:>8} {:>12} {:>6} {:>16} {:>14}\n", "T_degC", "wire_force_mN", "taut", "pinned_|R|_mN",
                "pinned_R.v_mN");
@@ -167,6 +168,8 @@ int main(int argc, char** argv) {
       const bool taut = !at_hold && p.lambda < 0.0;
       const double force = taut ? -p.lambda : 0.0;
       if (!(p.free_ok && p.held_ok && p.wire_ok)) ++unconverged;
+      if (p.t_degC < hold_degC && !at_hold) ++below;
+      if (p.t_degC > hold_degC && !at_hold) ++above;
       if (p.t_degC < hold_degC && !at_hold && taut) ++taut_below;
       if (at_hold) {
         force_at_hold = std::abs(p.lambda);
@@ -186,6 +189,9 @@ int main(int argc, char** argv) {
                  p.reaction.y(), p.reaction.z(), p.free_tip.x(), p.free_tip.y(), p.free_tip.z(), hold.x(),
                  hold.y(), hold.z(), v.x(), v.y(), v.z());
     }
+    // The slack and rising gates need points on both sides of the hold temperature (rising: two).
+    gates.expect_count(material + ": temperatures below the hold temperature", below, 1);
+    gates.expect_count(material + ": temperatures above the hold temperature", above, 2);
     gates.check(material + ": free, pinned and wire solves converge at every temperature", unconverged == 0,
                 fmt::format("{} of {} points failed", unconverged, pts.size()), "0");
     gates.check(material + ": wire slack below the hold temperature", taut_below == 0,

@@ -3,8 +3,8 @@
 //
 // What it checks
 //   Every `tcasim.scenario/1` file in validation/scenarios/ (other schemas, e.g. the TCA
-//   files, are skipped with a printed reason; so is a scenario the solver reports as
-//   unsupported) is solved with its own actuation. Its centerline and actuator paths are
+//   files, are skipped with a printed reason; a scenario the solver reports as unsupported
+//   is reported as not run and fails) is solved with its own actuation. Its centerline and actuator paths are
 //   written as <name>.vtp (VTK PolyData) and <name>_shape.csv (scripts/plot_shapes.py).
 // Reference
 //   Statics of the whole rod (docs/conventions.md, "Global equilibrium"): the base
@@ -23,6 +23,7 @@
 //   3. where e is above the floor (e(kOrderFineSteps) >= kOrderMinImbalance), its observed
 //      order between kOrderCoarseSteps and kOrderFineSteps lies in [4 - kOrderHalfWidth,
 //      4 + kOrderHalfWidth] (RK4): a missing load term would give an e that does not converge.
+//   and for the suite: every scenario found is solved (at least the 16 shipped ones).
 // Usage
 //   validate_shapes --out-dir out/shapes              (full: N = 128 RK4 steps)
 //   validate_shapes --quick --out-dir /tmp/shapes     (N = 32; --steps N for any even N)
@@ -45,6 +46,7 @@
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
+#include "validation/common/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
@@ -222,12 +224,17 @@ int main(int argc, char** argv) {
 
     fmt::print("Step 4: gates\n");
     tcasim::validation::Gates gates("validate_shapes");
+    std::size_t solved = 0;  // scenarios that reach the gates below (errors fail above)
     for (const auto& row : rows) {
       if (row.status == "error") {
         gates.check(row.name + ": converges", false, "error: " + row.reason, "converged");
         continue;
       }
-      if (row.main.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) continue;
+      if (row.main.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) {
+        gates.not_run(row.name, "the solver reports it unsupported: " + row.reason);
+        continue;
+      }
+      ++solved;
       const bool converged = row.main.summary.converged() && row.equilibrium.summary.converged() &&
                              row.coarse.summary.converged() && row.fine.summary.converged();
       gates.check(row.name + ": converges", converged,
@@ -250,6 +257,10 @@ int main(int argc, char** argv) {
                    row.name, e_fine, kOrderFineSteps, kOrderMinImbalance);
       }
     }
+    gates.expect_count("scenarios", solved,
+                       tcasim::validation::expected_scenarios(
+                           scenario_dir, {},
+                           scenario_dir == TCASIM_SCENARIO_DIR ? tcasim::validation::kShippedSuiteScenarios : 1));
     gates.write_csv(out_dir);
     fmt::print("Wrote {}/shapes_summary.csv, <name>.vtp, <name>_shape.csv and gates.csv\n", out_dir);
     return gates.finish();
