@@ -115,6 +115,14 @@ void add_inverse_command(CLI::App& app) {
                            : std::numeric_limits<double>::quiet_NaN();
       if (a.drive.type == rod::Drive::Type::kTca) {
         e["temperature_degC"] = units::K_to_degC(v);
+        // Coil contact of the solved state at the final temperatures.
+        const std::size_t i = static_cast<std::size_t>(r.actuators[k]);
+        if (i < sol.tensions_N.size()) {
+          rod::ActuatorResult c(a.name, sol.tensions_N[i], sol.elongations_m[i]);
+          rod::set_coil_contacts(a, act.actuators[i].segments, c);
+          e["coils_closed"] = c.coils_closed;
+          e["contact_force_N"] = c.contact_force_N;
+        }
       } else {
         e["tension_N"] = v;
       }
