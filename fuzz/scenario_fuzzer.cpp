@@ -12,16 +12,8 @@
 // InputError is therefore a valid outcome; any other exception prints its message and
 // aborts, so libFuzzer records the input as a crash.
 //
-// Temporary workarounds for reader defects being fixed elsewhere (off by default; set by
-// scripts/fuzz.sh --tolerate-known-reader-issues to get a long run past them):
-//   TCASIM_FUZZ_MAX_DEPTH=N          skip inputs nested deeper than N arrays/objects
-//                                    (deep nesting exhausts the stack);
-//   TCASIM_FUZZ_TOLERATE_OVERFLOW=1  accept nlohmann's out_of_range 406 (a number such
-//                                    as 1e400 that overflows a double) as a rejection.
 // Usage: scripts/fuzz.sh SECONDS (builds in build-fuzz, seeds the corpus, runs).
-#include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -38,8 +30,6 @@ namespace {
 struct Config {
   std::filesystem::path dir;   ///< private data dir: dir/materials/fuzz.json is the input
   std::filesystem::path file;  ///< the input file
-  long max_depth = 0;          ///< 0: no cap
-  bool tolerate_overflow = false;
 };
 
 Config& config() {
@@ -50,27 +40,6 @@ Config& config() {
 void remove_dir() {
   std::error_code ec;
   std::filesystem::remove_all(config().dir, ec);
-}
-
-/// Deepest nesting of arrays and objects outside strings (a byte scan; no parsing).
-long nesting_depth(const std::uint8_t* data, std::size_t size) {
-  long depth = 0, deepest = 0;
-  bool in_string = false, escaped = false;
-  for (std::size_t i = 0; i < size; ++i) {
-    const char c = static_cast<char>(data[i]);
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-  return deepest;
 }
 
 [[noreturn]] void abort_with(const char* reader, const char* kind, const char* what) {
@@ -84,8 +53,6 @@ void run_reader(const char* name, Read read) {
   try {
     read();
   } catch (const tcasim::InputError&) {
-  } catch (const nlohmann::json::out_of_range& e) {
-    if (!(config().tolerate_overflow && e.id == 406)) abort_with(name, "nlohmann::json::out_of_range", e.what());
   } catch (const std::exception& e) {
     abort_with(name, "an exception", e.what());
   } catch (...) {
@@ -113,14 +80,11 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
   c.file = materials / "fuzz.json";
   std::atexit(remove_dir);
   setenv("TCASIM_DATA_DIR", c.dir.c_str(), 1);
-  if (const char* d = std::getenv("TCASIM_FUZZ_MAX_DEPTH")) c.max_depth = std::strtol(d, nullptr, 10);
-  if (const char* o = std::getenv("TCASIM_FUZZ_TOLERATE_OVERFLOW")) c.tolerate_overflow = std::string(o) == "1";
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const Config& c = config();
-  if (c.max_depth > 0 && nesting_depth(data, size) > c.max_depth) return -1;  // not added to the corpus
   std::FILE* f = std::fopen(c.file.c_str(), "wb");
   if (f == nullptr || std::fwrite(data, 1, size, f) != size || std::fclose(f) != 0) {
     std::perror("scenario_fuzzer: writing the input file");

@@ -7,24 +7,20 @@
 # and material files and grows across runs. Installs clang-14 and libfuzzer-14-dev itself
 # with its runtimes (Debian packages, through scripts/setup.sh, only if missing); not part
 # of the default build or test run.
-# Usage: scripts/fuzz.sh SECONDS [--tolerate-known-reader-issues] [-- libFuzzer flags]
-#   --tolerate-known-reader-issues  temporary: skips inputs nested deeper than 64 and
-#                                   accepts a double overflow (1e400) as a rejection, two
-#                                   reader defects being fixed, so a long run gets past them
+# Usage: scripts/fuzz.sh SECONDS [-- libFuzzer flags]
 #   env: TCASIM_FUZZ_BUILD_DIR (default build-fuzz), TCASIM_JOBS (default 2)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${TCASIM_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 jobs="${TCASIM_JOBS:-2}"
 
-usage() { echo "usage: scripts/fuzz.sh SECONDS [--tolerate-known-reader-issues] [-- libFuzzer flags]" >&2; exit 2; }
+usage() { echo "usage: scripts/fuzz.sh SECONDS [-- libFuzzer flags]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 seconds="$1"; shift
 [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: SECONDS = '$seconds' must be a positive integer" >&2; exit 2; }
 extra=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --tolerate-known-reader-issues) export TCASIM_FUZZ_MAX_DEPTH=64 TCASIM_FUZZ_TOLERATE_OVERFLOW=1 ;;
     --) shift; extra=("$@"); break ;;
     *) usage ;;
   esac
