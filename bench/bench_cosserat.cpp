@@ -1,7 +1,9 @@
 // Speed of the Cosserat shooting solver (Google Benchmark).
 //  - the paper's circular manipulator at 90 degC: cold solve; the warm-started step from
 //    85 to 90 degC of a 5 degC sweep; the mean warm-started step of a 25..150 degC sweep;
-//  - a 4-tendon steel rod (tensions 15, 0, 0, 0 N, gravity along +x): cold solve.
+//  - a 4-tendon steel rod (tensions 15, 0, 0, 0 N, gravity along +x): cold solve; a warm
+//    start from its converged unknowns perturbed by 1e-3 (relative) against the cold solve
+//    with the same options (RK4 100 steps, RK8 2 steps).
 // The manipulator benchmarks run with RK4 at 32 steps (scheme:4, lie:0), RKMK4 Lie-group
 // kinematics at 32 steps (scheme:4, lie:1), RK6 at 10 steps (scheme:6) and RK8 at 4 steps
 // (scheme:8, coarse level 2 steps), each at the default tolerance 1e-10 (tol:10) and at
@@ -207,6 +209,47 @@ void BM_SteelTendonRodColdRk8(benchmark::State& state) {
   time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_SteelTendonRodColdRk8)->Unit(benchmark::kMicrosecond);
+
+/// Steel rod options for the warm-versus-cold benchmarks: scheme 4 (RK4, `steps` steps) or 8
+/// (RK8).
+cosserat::Options steel_options(const benchmark::State& state) {
+  cosserat::Options o = options(static_cast<int>(state.range(1)));
+  if (state.range(0) == 8) o.integrator.method = ode::Method::kRk8;
+  return o;
+}
+
+void steel_warm_args(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"scheme", "steps"});
+  b->Args({4, 100})->Args({8, 2});
+  b->Unit(benchmark::kMicrosecond);
+}
+
+/// Relative perturbation of the converged unknowns a warm start begins from.
+constexpr double kSteelWarmPerturbation = 1e-3;
+
+/// A warm start on the steel rod from its converged unknowns scaled by 1 + 1e-3 (with that
+/// solution's Jacobian and coarse-level fields, no path): compare with
+/// BM_SteelTendonRodColdSameOptions; a warm start should not cost more than a cold one.
+void BM_SteelTendonRodWarmPerturbed(benchmark::State& state) {
+  const rod::RodModel m = cosserat::testing::steel_tendon_rod();
+  cosserat::ShootingSolver solver(m, steel_options(state));
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  cosserat::Solution start;
+  if (!solver.solve(act, start).converged()) state.SkipWithError("cold solve failed");
+  start.unknowns *= 1.0 + kSteelWarmPerturbation;
+  start.path.clear();
+  time_solves(state, solver, act, start);
+}
+BENCHMARK(BM_SteelTendonRodWarmPerturbed)->Apply(steel_warm_args);
+
+/// The cold solve with the options of BM_SteelTendonRodWarmPerturbed.
+void BM_SteelTendonRodColdSameOptions(benchmark::State& state) {
+  const rod::RodModel m = cosserat::testing::steel_tendon_rod();
+  cosserat::ShootingSolver solver(m, steel_options(state));
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  time_solves(state, solver, act, cosserat::Solution());
+}
+BENCHMARK(BM_SteelTendonRodColdSameOptions)->Apply(steel_warm_args);
 
 /// Largest tip error of a warm-started 25..150 degC sweep with `o` against RK4 at 4096 steps.
 void print_sweep_accuracy(const char* name, const cosserat::Options& o) {

@@ -1,0 +1,42 @@
+#pragma once
+/// One discretization level of the shooting IVP: the integrator of the state and, if asked,
+/// of the state with its forward sensitivities, by either pose integration
+/// (Options::kinematics): the flat ode::Integrator (RK4/6/8 or CVODE) or the Lie-group
+/// RKMK4 (cosserat/lie_rkmk4.hpp). Both report failure the same way here: integrate()
+/// returns false when the integration failed or the end state is not finite.
+/// Internal to the shooting solver.
+#include <Eigen/Core>
+#include <optional>
+
+#include "common/ode.hpp"
+#include "cosserat/lie_rkmk4.hpp"
+#include "cosserat/shooting.hpp"
+
+namespace tcasim::cosserat::internal {
+
+class IntegrationLevel {
+ public:
+  /// dim: IVP state dimension; nx: sensitivity directions (used when `sensitivities`);
+  /// options: the integrator (its `steps` are this level's; output_intervals > 0 samples the
+  /// observer at that many equal intervals, 0 at every step node). Throws InputError on bad
+  /// options.
+  IntegrationLevel(int dim, int nx, const ode::IntegratorOptions& options, Kinematics kinematics,
+                   bool sensitivities);
+
+  /// Integrates y (size dim) from 0 to L in place; the observer sees the samples. False when
+  /// the integration failed or y(L) is not finite.
+  bool integrate(const ode::RhsFunction& f, double L, Eigen::VectorXd& y,
+                 const ode::Observer& observer = {});
+  /// Integrates the augmented state Y = (y, Y_0, ..., Y_{nx-1}) (size dim (1 + nx)) with the
+  /// variational right-hand side f. Needs has_sensitivities(). False as integrate().
+  bool integrate_sensitivities(const ode::RhsFunction& f, double L, Eigen::VectorXd& Y);
+
+  bool has_sensitivities() const { return flat_sens_.has_value() || lie_sens_.has_value(); }
+
+ private:
+  std::optional<ode::Integrator> flat_, flat_sens_;  // Kinematics::kFlat
+  std::optional<LieGroupRk4> lie_, lie_sens_;        // Kinematics::kLieGroup
+  int every_ = 1;  // Lie group: observe every every_-th step node
+};
+
+}  // namespace tcasim::cosserat::internal

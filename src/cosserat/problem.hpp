@@ -1,0 +1,51 @@
+#pragma once
+/// The constant data of one shooting problem, fixed when the solver is built: the layout of
+/// the IVP state and of the unknowns (3-D, or the planar reduction's), the stiffnesses and
+/// the per-actuator constants. Internal to the shooting solver (cosserat/shooting.hpp
+/// documents the layouts).
+#include <Eigen/Core>
+#include <vector>
+
+#include "cosserat/shooting.hpp"
+#include "cosserat/string_system.hpp"
+#include "rod/model.hpp"
+
+namespace tcasim::cosserat::internal {
+
+/// Forward sensitivities keep their 6 x nx work matrix on the stack: at most this many
+/// unknowns (10 TCA drives); beyond, the solver uses forward differences instead.
+inline constexpr int kMaxSensitivityUnknowns = 16;
+
+inline bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
+
+struct RodProblem {
+  /// planar: the planar reduction's layout (cosserat/planar.hpp) instead of the 3-D one.
+  RodProblem(const rod::RodModel& m, bool planar);
+
+  /// IVP state dimension of `m` (3-D or planar layout).
+  static int state_dimension(const rod::RodModel& m, bool planar_state = false);
+
+  const rod::RodModel& model;
+  bool planar = false;
+  int x_tca = 6;  // index of the first TCA unknown: after nu(0), omega(0) (3-D) or their in-plane part
+  int n_act = 0;
+  int n_tca = 0;
+  int nx = 0;
+  // Tip constraint (RodModel::tip_constraint): n_con = 3 (pinned) or 1 (normal only)
+  // reaction unknowns at x[k_con...] and as many position residuals at r[k_con...].
+  int n_con = 0;
+  int k_con = 0;
+  Vec3 con_target_W = Vec3::Zero();
+  Vec3 con_normal_W = Vec3::Zero();
+  int dim = 0;
+  double L = 0.0;
+  Vec3 K_nu, K_omega, nu_star, omega_star;
+  Vec3 K_nu_inv, K_omega_inv;  // reciprocals for StringSystem
+  std::vector<int> unknown_of;   // actuator -> unknown index (-1 for tension drives)
+  std::vector<int> act_of;       // TCA unknown k (x[x_tca + k]) -> actuator
+  std::vector<double> length_ratio;
+  std::vector<double> count;
+  std::vector<bool> straight;
+};
+
+}  // namespace tcasim::cosserat::internal

@@ -1,0 +1,230 @@
+#include "cosserat/rhs.hpp"
+
+#include "cosserat/string_system.hpp"
+
+namespace tcasim::cosserat::internal {
+
+using namespace state_layout;
+
+RodRhs::RodRhs(const rod::RodModel& m, bool planar_layout, bool sensitivities)
+    : RodProblem(m, planar_layout) {
+  cT.assign(n_act, 0.0);
+  if (planar) {
+    prod.kn_x = K_nu.x();
+    prod.kn_z = K_nu.z();
+    prod.kw_y = K_omega.y();
+    for (int i = 0; i < n_act; ++i) {
+      prod.rho.push_back(model.actuators[i].routing.offset_m.x());
+      prod.length_ratio.push_back(length_ratio[i]);
+      prod.count.push_back(count[i]);
+      prod.direction_of.push_back(unknown_of[i]);
+    }
+    prod.cT.assign(n_act, 0.0);
+  }
+  scaled_segments.resize(n_act);
+  if (planar) {
+    rhs = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+      planar::rhs(prod, yy.data(), dy.data());
+    };
+  } else {
+    rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
+  }
+  cache.resize(n_act);
+  if (sensitivities && nx <= kMaxSensitivityUnknowns) {
+    rhs_ws.resize(6, nx);
+    if (planar) {
+      rhs_sens = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+        planar::rhs_sens(prod, dim, nx, yy.data(), dy.data());
+      };
+    } else {
+      rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
+        eval_rhs_sens(s, yy, dy);
+      };
+    }
+  }
+}
+
+// docs/conventions.md "Body-frame ODEs solved by the shooting solver".
+void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) const {
+  const Eigen::Map<const Mat3> R(yy.data() + kR);
+  const Vec3 e = yy.segment<3>(kNu);  // nu - nu* (shooting.hpp layout)
+  const Vec3 nu = nu_star + e;
+  const Vec3 omega = yy.segment<3>(kOmega);
+  // [Pawlowski2019] Eqs. (9)-(10): n_B = K_nu (nu - nu*), m_B = K_omega (omega - omega*).
+  const Vec3 n_B = K_nu.cwiseProduct(e);
+  const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
+
+  // M = K + sum_i U_i A_i U_i^T (StringSystem), A_i = c_i T_i P_i / |q_i|.
+  StringSystem M(K_nu, K_omega, K_nu_inv, K_omega_inv);
+  // b_nu = -omega x n_B - R^T f_ext - sum g_i;  b_omega = -omega x m_B - nu x n_B - sum r_i x g_i
+  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+  Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+  for (int i = 0; i < n_act; ++i) {
+    const rod::Routing& routing = model.actuators[i].routing;
+    Vec3 r, dr, ddr;
+    if (straight[i]) {
+      r << routing.offset_m.x(), routing.offset_m.y(), 0.0;
+      dr.setZero();
+      ddr.setZero();
+    } else {
+      r = routing.r(s);
+      dr = routing.dr(s);
+      ddr = routing.ddr(s);
+    }
+    // [Pawlowski2019] Eq. (19): q = nu + omega x r + r'.
+    const Vec3 q = nu + omega.cross(r) + dr;
+    const double q_norm = q.norm();
+    dy[kDelta + i] = q_norm - length_ratio[i];  // delta_i' = |q_i| - L_i
+    if (cT[i] == 0.0) continue;
+    const Vec3 qh = q / q_norm;
+    M.add(r, cT[i] / q_norm, qh);
+    // g_i = c_i T_i [omega x qh + P (omega x r' + r'') / |q|],  P v = v - qh (qh . v)
+    Vec3 g = omega.cross(qh);
+    if (!straight[i]) {
+      const Vec3 v = omega.cross(dr) + ddr;
+      g += (v - qh * qh.dot(v)) / q_norm;
+    }
+    g *= cT[i];
+    b_nu -= g;
+    b_omega -= r.cross(g);
+  }
+  Vec6 z;
+  z << b_nu, b_omega;
+  M.factor();
+  M.solve_in_place(z);
+  // [Pawlowski2019] Eqs. (7)-(8): p' = R nu, R' = R hat(omega).
+  dy.segment<3>(kP) = R * nu;
+  Eigen::Map<Mat3>(dy.data() + kR) = R * hat(omega);
+  dy.segment<6>(kNu) = z;
+  dy.segment<3>(kC) = yy.segment<3>(kP);  // c' = p
+}
+
+void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const {
+  const double* yy = Ya.data();
+  const Eigen::Map<const Mat3> R(yy + kR);
+  const Vec3 e(yy + kNu);  // nu - nu*
+  const Vec3 nu = nu_star + e;
+  const Vec3 omega(yy + kOmega);
+  const Vec3 n_B = K_nu.cwiseProduct(e);
+  const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
+  StringSystem lu(K_nu, K_omega, K_nu_inv, K_omega_inv);
+  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+  Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+  for (int i = 0; i < n_act; ++i) {
+    ActuatorCache& c = cache[i];
+    const rod::Routing& routing = model.actuators[i].routing;
+    Vec3 ddr;
+    if (straight[i]) {
+      c.r << routing.offset_m.x(), routing.offset_m.y(), 0.0;
+      c.dr.setZero();
+      ddr.setZero();
+    } else {
+      c.r = routing.r(s);
+      c.dr = routing.dr(s);
+      ddr = routing.ddr(s);
+    }
+    const Vec3 q = nu + omega.cross(c.r) + c.dr;
+    c.q_norm = q.norm();
+    c.qh = q / c.q_norm;
+    dY[kDelta + i] = c.q_norm - length_ratio[i];
+    c.v = omega.cross(c.dr) + ddr;
+    c.Pv = c.v - c.qh * c.qh.dot(c.v);
+    c.gb = omega.cross(c.qh) + c.Pv / c.q_norm;  // g_i = c_i T_i gb_i
+    if (cT[i] == 0.0) continue;
+    lu.add(c.r, cT[i] / c.q_norm, c.qh);
+    const Vec3 g = cT[i] * c.gb;
+    b_nu -= g;
+    b_omega -= c.r.cross(g);
+  }
+  Vec6 z;
+  z << b_nu, b_omega;
+  lu.factor();
+  lu.solve_in_place(z);
+  dY.segment<3>(kP) = R * nu;
+  Eigen::Map<Mat3>(dY.data() + kR) = R * hat(omega);
+  dY.segment<6>(kNu) = z;
+  dY.segment<3>(kC) = Ya.segment<3>(kP);
+  const Vec3 zn = z.head<3>(), zo = z.tail<3>();
+  for (int i = 0; i < n_act; ++i) {
+    ActuatorCache& c = cache[i];
+    const Vec3 w = zn - c.r.cross(zo);  // M z = K z + sum [A_i w_i; r_i x A_i w_i]
+    c.Pw = w - c.qh * c.qh.dot(w);
+  }
+  // Right-hand sides db_j - dM_j z of all directions, solved together.
+  auto& B = rhs_ws;
+  for (int j = 0; j < nx; ++j) {
+    const double* yj = yy + dim * (j + 1);
+    double* dyj = dY.data() + dim * (j + 1);
+    const Eigen::Map<const Mat3> dR(yj + kR);
+    const Vec3 dnu(yj + kNu), dom(yj + kOmega);
+    const Vec3 dn_B = K_nu.cwiseProduct(dnu), dm_B = K_omega.cwiseProduct(dom);
+    Vec3 db_nu = -dom.cross(n_B) - omega.cross(dn_B) - dR.transpose() * f_ext_W;
+    Vec3 db_om = -dom.cross(m_B) - omega.cross(dm_B) - dnu.cross(n_B) - nu.cross(dn_B);
+    for (int i = 0; i < n_act; ++i) {
+      const ActuatorCache& c = cache[i];
+      const Vec3 dq = dnu + dom.cross(c.r);
+      const double dqn = c.qh.dot(dq);
+      dyj[kDelta + i] = dqn;
+      const double dcT = unknown_of[i] == j ? count[i] : 0.0;
+      if (cT[i] == 0.0 && dcT == 0.0) continue;
+      const Vec3 dqh = (dq - c.qh * dqn) / c.q_norm;
+      // dP u = -(dqh (qh . u) + qh (dqh . u))
+      const Vec3 dv = dom.cross(c.dr);
+      const Vec3 dPv = -(dqh * c.qh.dot(c.v) + c.qh * dqh.dot(c.v));
+      const Vec3 Pdv = dv - c.qh * c.qh.dot(dv);
+      const Vec3 dgb = dom.cross(c.qh) + omega.cross(dqh) + (dPv + Pdv) / c.q_norm -
+                       c.Pv * (dqn / (c.q_norm * c.q_norm));
+      const Vec3 dg = dcT * c.gb + cT[i] * dgb;
+      // d(A w) with w fixed: A = c T P / |q|
+      const Vec3 w = zn - c.r.cross(zo);
+      const Vec3 dPw = -(dqh * c.qh.dot(w) + c.qh * dqh.dot(w));
+      const Vec3 dAw = (dcT * c.Pw + cT[i] * dPw) / c.q_norm -
+                       c.Pw * (cT[i] * dqn / (c.q_norm * c.q_norm));
+      db_nu -= dg + dAw;
+      db_om -= c.r.cross(dg + dAw);
+    }
+    B.col(j) << db_nu, db_om;
+    Eigen::Map<Vec3>(dyj + kP) = dR * nu + R * dnu;
+    Eigen::Map<Mat3>(dyj + kR) = dR * hat(omega) + R * hat(dom);
+    Eigen::Map<Vec3>(dyj + kC) = Vec3(yj + kP);
+  }
+  lu.solve_in_place(B);
+  for (int j = 0; j < nx; ++j) Eigen::Map<Vec6>(dY.data() + dim * (j + 1) + kNu) = B.col(j);
+}
+
+void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x) {
+  for (int i = 0; i < n_act; ++i) {
+    const int k = unknown_of[i];
+    const double T = k >= 0 ? x[k] : lambda * act.actuators[i].tension_N;
+    cT[i] = count[i] * T;
+    if (k >= 0) {
+      const auto& tca = *model.actuators[i].drive.tca;
+      const double t_ref = tca.material().reference_temperature_K;
+      auto& segs = scaled_segments[i];
+      segs = act.actuators[i].segments;  // no allocation after the first call
+      for (tca::Segment& seg : segs) seg.temperature_K = t_ref + lambda * (seg.temperature_K - t_ref);
+    }
+  }
+  f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+  if (planar) {
+    prod.cT = cT;
+    const Vec3 f_B0 = model.R_WB0.transpose() * f_ext_W;
+    prod.f_x = f_B0.x();
+    prod.f_z = f_B0.z();
+  }
+}
+
+void RodRhs::initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
+  y0.setZero();
+  if (planar) {
+    y0[planar::kCS] = 1.0;  // Rot_y(0) = I
+    y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z - 1, kappa) are contiguous
+    return;
+  }
+  y0.segment<3>(kP) = model.base_position_W_m;
+  Eigen::Map<Mat3>(y0.data() + kR) = model.R_WB0;
+  y0.segment<3>(kNu) = x.head<3>();
+  y0.segment<3>(kOmega) = x.segment<3>(3);
+}
+
+}  // namespace tcasim::cosserat::internal

@@ -1,0 +1,54 @@
+#pragma once
+/// Right-hand side of the shooting IVP and of its forward sensitivities (the variational
+/// equations), docs/conventions.md "Body-frame ODEs solved by the shooting solver", with the
+/// IVP parameters (string tensions c_i T_i, distributed load) of the current evaluation.
+/// The planar reduction's right-hand sides are cosserat/planar.hpp's. Internal to the
+/// shooting solver.
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/ode.hpp"
+#include "cosserat/planar.hpp"
+#include "cosserat/problem.hpp"
+#include "cosserat/shooting.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::cosserat::internal {
+
+struct RodRhs : RodProblem {
+  /// sensitivities: also build the variational right-hand side `rhs_sens` (not with more
+  /// than kMaxSensitivityUnknowns unknowns).
+  RodRhs(const rod::RodModel& m, bool planar, bool sensitivities);
+  RodRhs(const RodRhs&) = delete;  // the right-hand sides capture `this`
+  RodRhs& operator=(const RodRhs&) = delete;
+
+  // docs/conventions.md "Body-frame ODEs solved by the shooting solver".
+  void eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) const;
+  /// RHS of the state and of its forward sensitivities Y_j = dy/dx_j (the variational
+  /// equations Y_j' = (df/dy) Y_j + df/dx_j, x_j = T_k entering through c_k T_k). Layout:
+  /// Y = (y, Y_0, ..., Y_{nx-1}), each block of length `dim`. The directional derivative
+  /// of the linear system M z = b is dz = M^-1 (db - dM z), with the same LU as z.
+  void eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const;
+  /// Sets cT and f_ext for load fraction lambda and unknowns x; fills scaled segments.
+  void set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x);
+  /// y(0) for unknowns x (3-D or planar layout).
+  void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const;
+
+  // Current IVP parameters (set_parameters, before each integration).
+  std::vector<double> cT;  // count * tension per actuator
+  Vec3 f_ext_W = Vec3::Zero();
+  std::vector<std::vector<tca::Segment>> scaled_segments;  // TCA segments at the load fraction
+  planar::Rod prod;  // the planar reduction's rod and parameters (planar only)
+  ode::RhsFunction rhs;       // y' = f(s, y)
+  ode::RhsFunction rhs_sens;  // (y, Y_j)' (sensitivities only)
+
+  /// Per-actuator quantities shared by the state and sensitivity parts of the RHS.
+  struct ActuatorCache {
+    Vec3 r, dr, qh, v, Pv, gb, Pw;
+    double q_norm = 1.0;
+  };
+  mutable std::vector<ActuatorCache> cache;
+  mutable Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxSensitivityUnknowns> rhs_ws;  // 6 x nx
+};
+
+}  // namespace tcasim::cosserat::internal

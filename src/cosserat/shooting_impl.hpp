@@ -1,0 +1,197 @@
+#pragma once
+/// The shooting solver's state behind ShootingSolver (cosserat/shooting.hpp): the layers
+/// RodProblem (constant layout, problem.hpp) <- RodRhs (IVP right-hand sides, rhs.hpp) <-
+/// TipConditions (residual rows, tip_conditions.hpp), plus the IVP levels and what the
+/// solver stages keep between calls. The stages are defined in one file each:
+///   shooting.cpp          driver: construction, solve(), results
+///   shooting_map.cpp      r(x) and dr/dx by one IVP on the active level, the IVP memo
+///   newton.cpp            damped Newton, line search, Broyden updates, FD Jacobians,
+///                         continuation in the load fraction
+///   warm_start.cpp        the multi-level start (coarse, middle/Richardson, coarse-grid
+///                         correction), the path extrapolation of sweeps, TCA row refresh
+///   initial_guess.cpp     the closed-form cold-start guess with gravity
+///   planar_embedding.cpp  when the planar reduction applies, and its unknowns and states
+///                         mapped to/from the 3-D layout
+/// Internal to the shooting solver.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosserat/integration_level.hpp"
+#include "cosserat/shooting.hpp"
+#include "cosserat/tip_conditions.hpp"
+
+namespace tcasim::cosserat {
+
+struct ShootingSolver::Impl : internal::TipConditions {
+  using Vec3 = internal::Vec3;
+  using Mat3 = internal::Mat3;
+  using Vec6 = internal::Vec6;
+  using IntegrationLevel = internal::IntegrationLevel;
+
+  /// parent_3d: the 3-D solver when this one is its planar reduction (planar_model holds).
+  Impl(const rod::RodModel& m, const Options& o, Impl* parent_3d = nullptr);
+
+  // --- driver (shooting.cpp)
+  static Options validated(const rod::RodModel& m, Options o);
+  /// Options::jacobian = kForwardDifference when nx > kMaxSensitivityUnknowns.
+  static Options with_jacobian_fallback(Options o, int nx);
+  /// ShootingSolver::solve without the planar dispatch.
+  Summary solve(const Actuation& act, Solution& sol);
+  /// Sets sol's unknowns, tensions, elongations and tip state at x (full load) and the
+  /// summary's global equilibrium (3-D only).
+  void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
+  rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
+
+  // --- the shooting map r(x) (shooting_map.cpp)
+  /// Scaled residual at x; y(L) left in `y`. False when the IVP or a TCA law fails.
+  bool residual(const Actuation& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  /// Residual and its exact Jacobian from one augmented IVP (kSensitivity).
+  bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                             Eigen::VectorXd& r, Eigen::MatrixXd& J);
+  /// Records x (at load fraction lambda, the active level) as the accepted point of the IVP
+  /// memo: y(L), the IVP parameters and the contact derivatives there.
+  void remember(double lambda, const Eigen::VectorXd& x);
+
+  // --- Newton iteration (newton.cpp)
+  /// Damped Newton at load fraction lambda: the Jacobian (sensitivities or differences) is
+  /// computed at x when missing; after an accepted step it is Broyden-updated (trial points
+  /// cost one plain IVP) unless the step reduced ||r|| by less than kBroydenMinReduction
+  /// (then it is recomputed at the new point); a stale Jacobian gets kStaleLineSearchSteps
+  /// halvings before it is recomputed. x and J are in/out (J.size() == 0: no Jacobian yet).
+  Summary::Status newton(const Actuation& act, double lambda, Eigen::VectorXd& x,
+                         Eigen::MatrixXd& J, Summary& summary, std::string& why,
+                         double tolerance);
+  /// Sensitivity Jacobian for Newton at x (r: the residual at x, kept). On the fine level
+  /// with a coarse level (Options::coarse_steps), the first request at a point uses the coarse
+  /// level's sensitivities (coarse_steps / steps of the cost; within the coarse discretization
+  /// error of the fine Jacobian) and sets `approximate`; a second request at the same point
+  /// (the approximate one failed) computes the fine Jacobian.
+  bool newton_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                       Eigen::VectorXd& r, Eigen::MatrixXd& J, bool& approximate);
+  /// Forward or central differences of the residual (Options::jacobian), r0 = r(x).
+  bool fd_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                   const Eigen::VectorXd& r0, Eigen::MatrixXd& J);
+  /// Typical sizes of the unknowns (floor of the finite-difference steps).
+  Eigen::VectorXd typical_scale() const;
+  /// Continuation in the load fraction lambda from 0 to 1 after a failed direct solve (why:
+  /// its reason on entry, the outcome's on return), warm-starting each step on the fine
+  /// level; on return x, J are the last accepted point and its Jacobian (empty on failure).
+  Summary::Status continuation(const Actuation& act, Eigen::VectorXd& x, Eigen::MatrixXd& J,
+                               Summary& summary, std::string& why);
+
+  // --- warm starts and the multi-level start (warm_start.cpp)
+  /// Direct solve at full load from x (warm: the previous solution, J its Jacobian; cold: the
+  /// guess, J empty) with the two-level start (Options::coarse_steps); on return x and J are
+  /// the last accepted point and its Jacobian, and sol's coarse fields are set.
+  Summary::Status direct_solve(const Actuation& act, Solution& sol, bool warm, Eigen::VectorXd& x,
+                               Eigen::MatrixXd& J, Summary& summary, std::string& why);
+  /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
+  /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
+  /// removes the leading O(h^p) term (p: the method's order, 4, 6 or 8) of the discretization
+  /// error of x:
+  ///   x(N) = x* + C N^-p  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-p - N_m^-p) / (N_m^-p - N_c^-p).
+  /// On failure x, J keep the coarse solution.
+  void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc, const Eigen::MatrixXd& Jc,
+                          Eigen::VectorXd& x, Eigen::MatrixXd& J, Summary& summary);
+  /// Warm start: the actuation change (temperatures) alters the TCA rows of the Jacobian
+  /// only through the contact residual's derivatives (the IVP does not depend on
+  /// temperatures). Row k is (a e_k + b ddelta/dx) / F_c with a = dphi/dT_k, b = dphi/d delta,
+  /// so it is rebuilt from the previous solution's (a, b) and the new ones at the same point
+  /// under `act` (the residual there comes from the IVP memo, without integration).
+  void refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
+  /// The actuation as a flat vector (documented at ShootingSolver::solve).
+  static Eigen::VectorXd actuation_vector(const Actuation& act);
+  /// Extrapolates the unknowns to the actuation a along Solution::path: the newest points
+  /// whose actuations lie on the line through the last one and a, with parameter t (0 at
+  /// the last point, 1 at a), each older point at least kPathMinSpacing behind the next (no
+  /// wild extrapolation from clustered points), are interpolated by the Lagrange polynomial
+  /// in t evaluated at t = 1. Returns false when fewer than two points qualify (or a is the
+  /// last point's actuation).
+  static bool extrapolate_path(const Solution& sol, const Eigen::VectorXd& a, int nx,
+                               Eigen::VectorXd& x);
+  /// Updates Solution::path after a solve (see its documentation).
+  static void record_path(Solution& sol, bool warm, bool converged, Eigen::VectorXd a);
+
+  // --- initial guess (initial_guess.cpp)
+  /// Initial guess (docs/conventions.md "Initial guess"): the closed-form constant-strain rod
+  /// of the known tensions and of the TCA tensions solving T_k = F_tca(delta_k(T)) with the
+  /// closed-form elongations (a small Newton iteration; T_tca = 0 if it fails), plus, if
+  /// `with_gravity`, the strains of gravity on that bent rod: a fixed-point iteration bends
+  /// the arc by their mean and the unknowns take their value at the base. Without a converged
+  /// fixed point gravity is ignored; *used_gravity tells whether it was included. Tip loads
+  /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria).
+  Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
+                                 bool* used_gravity = nullptr);
+  /// TCA tensions of the guess: T_k = F_tca(delta_k(T)) with delta_k of the closed-form
+  /// strains plus `extra` (the mean load strains), by a small damped Newton iteration
+  /// (dT/d delta from the closed form); sets x's TCA entries (0 if it fails) and their
+  /// c T in cTs (known tensions as set by set_parameters).
+  void guess_tensions(const Vec6& extra, std::vector<double>& cTs, Eigen::VectorXd& x);
+  /// Constant strains of the closed form (docs/conventions.md) for tensions cT (count x
+  /// tension per actuator), offsets taken at s = 0: e = nu - nu* (the deviation, no
+  /// cancellation) and omega (the reference curvature plus the deviation).
+  void closed_form_strains(const std::vector<double>& cTs, Vec3& e, Vec3& omega) const;
+  /// Pose at arc length s of a rod with constant strains (nu, omega) from the base pose:
+  /// R = R0 exp(s hat(omega)), p = p0 + R0 V nu with V = int_0^s exp(t hat(omega)) dt.
+  void arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R, Vec3& p) const;
+  /// Strains the distributed load f_ext_W (gravity) adds to a rod bent with constant strains
+  /// (nu, omega): K^-1 R(s)^T times the internal force and moment the load beyond s requires
+  /// (docs/conventions.md "Global equilibrium"), on kGuessNodes + 1 nodes; returns their mean
+  /// over s and their value at s = 0.
+  void load_strains(const Vec3& nu, const Vec3& omega, Vec6& mean, Vec6& base) const;
+
+  // --- planar reduction (planar_embedding.cpp)
+  /// Whether the model and options admit the planar reduction (cosserat/planar.hpp): straight
+  /// strings on the body x axis, reference curvature about y, no tip constraint, a fixed-step
+  /// flat integration with sensitivity Jacobians, and at most planar::kMaxActuators actuators
+  /// and planar::kMaxDirections unknowns. The actuation is checked per solve (planar_loads).
+  static bool planar_model(const rod::RodModel& m, const Options& o);
+  /// Whether the actuation keeps a planar model in its plane: gravity and tip force without
+  /// a component along R_WB0 e_y, the tip moment along it only (exact tests).
+  bool planar_loads(const Actuation& act) const;
+  /// Solves a planar problem (planar_model and planar_loads hold) with the planar Impl `p`:
+  /// the unknowns and tip state of `sol` are 3-D on entry and on return (the Jacobians, the
+  /// coarse-level fields and the path stay in p's reduced unknowns); the global equilibrium
+  /// is checked on the embedded 3-D solution.
+  Summary solve_planar(Impl& p, const Actuation& act, Solution& sol);
+  /// Planar reduction: the in-plane unknowns (nu_x, nu_z - 1, omega_y, T_tca...) of 3-D unknowns.
+  Eigen::VectorXd reduce(const Eigen::VectorXd& x3) const;
+  /// Whether 3-D unknowns lie in the plane of the planar reduction (exact zeros).
+  static bool in_plane(const Eigen::VectorXd& x3);
+  /// Planar reduction: the 3-D unknowns of reduced ones.
+  Eigen::VectorXd embed_unknowns(const Eigen::VectorXd& x) const;
+  /// Planar reduction: the 3-D IVP state (layout of shooting.hpp) of a planar one.
+  Eigen::VectorXd embed_state(const Eigen::VectorXd& yp) const;
+
+  Options options;
+  // Planar reduction (cosserat/planar.hpp): this Impl solves the reduced problem, with the
+  // 3-D Impl `parent` for what is only needed once per solve (the initial guess).
+  Impl* parent = nullptr;
+  // IVP levels: the fine one (Options::integrator), the coarse one (Options::coarse_steps)
+  // and, for cold starts, a middle one with 2 x coarse_steps (when 4 x coarse_steps <=
+  // steps): the fine start is the Richardson extrapolation of the coarse and middle
+  // solutions. `level` is the active one; output_level samples results (make_result).
+  IntegrationLevel fine_level;
+  std::optional<IntegrationLevel> coarse_level, mid_level, output_level;
+  IntegrationLevel* level = nullptr;
+  Eigen::VectorXd y;  // y(L) of the last IVP
+  Eigen::VectorXd Y;  // augmented state (sensitivities)
+
+  Eigen::VectorXd y_acc, x_acc;  // y(L) at the last accepted point x_acc (load fraction 1 only)
+  bool acc_full_load = false;
+  // IVP memo across solves: y(L) = y_acc is reused when the next IVP has the same initial
+  // unknowns, IVP parameters (cT, f_ext) and level, e.g. the first residual of a warm start
+  // whose actuation changed only temperatures or tip loads (they enter the tip residual only).
+  bool memo_valid = false;
+  std::vector<double> acc_cT;
+  std::vector<double> acc_dphi_dT, acc_dphi_ddelta;  // at the accepted point (its actuation)
+  Vec3 acc_f_ext = Vec3::Zero();
+  const IntegrationLevel* acc_level = nullptr;
+  Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
+  int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
+  int ivp_count = 0;
+};
+
+}  // namespace tcasim::cosserat

@@ -1,0 +1,59 @@
+// The shooting map: r(x) and dr/dx by one IVP from the unknowns x on the active level, and
+// the memo of the last accepted IVP.
+#include "cosserat/shooting_impl.hpp"
+
+#include "cosserat/planar.hpp"
+
+namespace tcasim::cosserat {
+
+using namespace state_layout;
+using internal::Mat3;
+using internal::Vec3;
+using internal::Vec6;
+using internal::all_finite;
+
+bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+                                    Eigen::VectorXd& r) {
+  if (!all_finite(x)) return false;
+  set_parameters(act, lambda, x);
+  if (memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x &&
+      acc_cT == cT && acc_f_ext == f_ext_W) {
+    y = y_acc;  // same IVP as the last accepted one: no integration
+    return tip_residual(act, lambda, x, y, r);
+  }
+  initial_state(x, y);
+  ++ivp_count;
+  if (!level->integrate(rhs, L, y)) return false;
+  return tip_residual(act, lambda, x, y, r);
+}
+
+bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double lambda,
+                                                 const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                                                 Eigen::MatrixXd& J) {
+  if (!all_finite(x)) return false;
+  set_parameters(act, lambda, x);
+  Y.setZero();
+  initial_state(x, y);
+  Y.head(dim) = y;
+  // d y(0) / d (nu0, omega0) (planar: d y(0) / d (nu_x0, nu_z0, kappa0))
+  for (int j = 0; j < x_tca; ++j) Y[dim * (j + 1) + (planar ? planar::kNu : kNu) + j] = 1.0;
+  ++ivp_count;
+  if (!level->integrate_sensitivities(rhs_sens, L, Y)) return false;
+  y = Y.head(dim);
+  if (!tip_residual(act, lambda, x, y, r)) return false;
+  return tip_jacobian(act, lambda, x, y, Y, J);
+}
+
+void ShootingSolver::Impl::remember(double lambda, const Eigen::VectorXd& x) {
+  acc_full_load = lambda == 1.0 && level == &fine_level;
+  memo_valid = y.allFinite();
+  acc_cT = cT;
+  acc_f_ext = f_ext_W;
+  acc_dphi_dT = dphi_dT;
+  acc_dphi_ddelta = dphi_ddelta;
+  acc_level = level;
+  y_acc = y;
+  x_acc = x;
+}
+
+}  // namespace tcasim::cosserat

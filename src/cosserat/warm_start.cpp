@@ -1,0 +1,180 @@
+// Starting points of the fine-level Newton iteration: the multi-level cold start (coarse
+// level, middle level and Richardson extrapolation), the warm start's coarse-grid
+// correction and TCA-row refresh, and the path extrapolation of sweeps (Solution::path).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cosserat/shooting_impl.hpp"
+
+namespace tcasim::cosserat {
+
+using namespace state_layout;
+using internal::Mat3;
+using internal::Vec3;
+using internal::Vec6;
+using internal::all_finite;
+
+namespace {
+
+/// Scaled residual to which the coarse level is converged: coarse IVPs are cheap, and the
+/// coarse-grid correction of a warm start is only as accurate as the coarse solutions.
+constexpr double kCoarseTolerance = 1e-9;
+/// A cold start hands the coarse (or middle) level's Jacobian to the next level only if it
+/// was Broyden-updated at most this many times since it was computed.
+constexpr int kMaxHandedOverUpdates = 1;
+/// Path extrapolation (ShootingSolver::kPathHistory): relative distance from the line below
+/// which an earlier actuation counts as on it, and the smallest spacing of the path's
+/// parameters in units of the new step.
+constexpr double kPathCollinearity = 1e-9;
+constexpr double kPathMinSpacing = 0.5;
+
+}  // namespace
+
+Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solution& sol, bool warm,
+                                                   Eigen::VectorXd& x, Eigen::MatrixXd& J,
+                                                   Summary& summary, std::string& why) {
+  // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
+  // (cheap IVPs); its solution is within the coarse discretization error of the fine one.
+  // Warm: coarse-grid correction x = x_fine,old + (x_coarse,new - x_coarse,old), whose
+  // error is the change of the discretization error between the two actuations.
+  Eigen::VectorXd coarse_x;
+  Eigen::MatrixXd coarse_J;
+  if (coarse_level) {
+    const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
+                             sol.coarse_unknowns.allFinite();
+    // A warm start with a Jacobian goes straight to the fine level: its first residual is
+    // usually free (IVP memo), and the Broyden-updated Jacobian saves the coarse solve.
+    const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
+    if ((!warm || warm_coarse) && !warm_fine) {
+      Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
+      Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
+                                                                     : Eigen::MatrixXd();
+      std::string coarse_why;
+      level = &*coarse_level;
+      const Summary::Status sc =
+          newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
+      level = &fine_level;
+      if (sc == Summary::Status::kConverged) {
+        if (warm) {
+          x += xc - sol.coarse_unknowns;
+        } else {
+          x = xc;
+          // A Jacobian updated more than once since it was computed has drifted far from
+          // the one at xc: the fine level then starts with a fresh (coarse-level) one.
+          if (jacobian_updates <= kMaxHandedOverUpdates) J = Jc;
+          if (mid_level) cold_extrapolation(act, xc, Jc, x, J, summary);
+        }
+        coarse_x = xc;
+        coarse_J = Jc;
+      }
+    }
+  }
+  sol.coarse_unknowns = coarse_x;
+  sol.coarse_jacobian = coarse_J;
+  if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
+  return newton(act, 1.0, x, J, summary, why, options.tolerance);
+}
+
+void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,
+                                              const Eigen::MatrixXd& Jc, Eigen::VectorXd& x,
+                                              Eigen::MatrixXd& J, Summary& summary) {
+  Eigen::VectorXd xm = xc;
+  Eigen::MatrixXd Jm = Jc;
+  std::string why;
+  level = &*mid_level;
+  const Summary::Status sm = newton(act, 1.0, xm, Jm, summary, why, kCoarseTolerance);
+  level = &fine_level;
+  if (sm != Summary::Status::kConverged) return;
+  const double p = ode::order_of(options.integrator.method);
+  const double a = std::pow(static_cast<double>(options.coarse_steps), -p);
+  const double b = std::pow(2.0 * options.coarse_steps, -p);
+  const double c = std::pow(static_cast<double>(options.integrator.steps), -p);
+  x = xm + ((c - b) / (b - a)) * (xm - xc);
+  J = jacobian_updates <= kMaxHandedOverUpdates ? Jm : Eigen::MatrixXd();
+}
+
+void ShootingSolver::Impl::refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x,
+                                            Eigen::MatrixXd& J) {
+  if (n_tca == 0 || !memo_valid || x_acc.size() != x.size() || x_acc != x) return;
+  const std::vector<double> a_old = acc_dphi_dT, b_old = acc_dphi_ddelta;
+  Eigen::VectorXd r;
+  if (!residual(act, 1.0, x, r)) return;
+  remember(1.0, x);  // Newton's first residual at x is then answered by the memo too
+  for (int i = 0; i < n_act; ++i) {
+    const int k = unknown_of[i];
+    if (k < 0 || b_old[i] == 0.0 || !std::isfinite(dphi_ddelta[i])) continue;
+    J(k, k) -= a_old[i] / Fc;
+    J.row(k) *= dphi_ddelta[i] / b_old[i];
+    J(k, k) += dphi_dT[i] / Fc;
+  }
+}
+
+Eigen::VectorXd ShootingSolver::Impl::actuation_vector(const Actuation& act) {
+  int n = 9;
+  for (const ActuatorDrive& d : act.actuators) n += 1 + 2 * static_cast<int>(d.segments.size());
+  Eigen::VectorXd a(n);
+  int k = 0;
+  for (const ActuatorDrive& d : act.actuators) {
+    a[k++] = d.tension_N;
+    for (const tca::Segment& seg : d.segments) {
+      a[k++] = seg.fraction;
+      a[k++] = seg.temperature_K;
+    }
+  }
+  a.segment<3>(k) = act.tip_force_W_N;
+  a.segment<3>(k + 3) = act.tip_moment_W_Nm;
+  a.segment<3>(k + 6) = act.gravity_W_m_s2;
+  return a;
+}
+
+bool ShootingSolver::Impl::extrapolate_path(const Solution& sol, const Eigen::VectorXd& a, int nx,
+                                            Eigen::VectorXd& x) {
+  const auto& path = sol.path;
+  if (path.size() < 2) return false;
+  const Solution::PathPoint& last = path.back();
+  if (last.actuation.size() != a.size() || last.unknowns.size() != nx) return false;
+  const Eigen::VectorXd d = a - last.actuation;
+  const double dd = d.squaredNorm();
+  if (!(dd > 0.0) || !std::isfinite(dd)) return false;
+  std::vector<double> t{0.0};
+  for (int k = static_cast<int>(path.size()) - 2; k >= 0; --k) {
+    const Solution::PathPoint& p = path[k];
+    if (p.actuation.size() != a.size() || p.unknowns.size() != nx) break;
+    const Eigen::VectorXd v = p.actuation - last.actuation;
+    const double tk = v.dot(d) / dd;
+    // On the line (to round-off of the actuation values) and behind the previous node.
+    if ((v - tk * d).norm() > kPathCollinearity * (v.norm() + std::sqrt(dd))) break;
+    if (tk > t.back() - kPathMinSpacing) break;
+    t.push_back(tk);
+  }
+  const int m = static_cast<int>(t.size());
+  if (m < 2) return false;
+  x.setZero(nx);
+  for (int k = 0; k < m; ++k) {
+    double w = 1.0;  // Lagrange basis polynomial of node t[k] at t = 1
+    for (int l = 0; l < m; ++l) {
+      if (l != k) w *= (1.0 - t[l]) / (t[k] - t[l]);
+    }
+    x += w * path[path.size() - 1 - k].unknowns;  // t[k] belongs to the k-th newest point
+  }
+  return x.allFinite();
+}
+
+void ShootingSolver::Impl::record_path(Solution& sol, bool warm, bool converged,
+                                       Eigen::VectorXd a) {
+  if (!converged) {
+    sol.path.clear();
+    return;
+  }
+  if (!warm) sol.path.clear();
+  if (!sol.path.empty() && sol.path.back().actuation.size() == a.size() &&
+      sol.path.back().actuation == a) {
+    sol.path.back().unknowns = sol.unknowns;  // the same point again: no duplicate node
+    return;
+  }
+  sol.path.push_back({std::move(a), sol.unknowns});
+  if (static_cast<int>(sol.path.size()) > ShootingSolver::kPathHistory) sol.path.erase(sol.path.begin());
+}
+
+}  // namespace tcasim::cosserat
