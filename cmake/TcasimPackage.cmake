@@ -57,3 +57,13 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/validation/scenarios/ DESTINATION ${TCAS
 install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 unset(_tcasim_targets)
 
+# The install as a consumer sees it (label `package`: in the default test run, not in the
+# sanitizer run, whose instrumented libraries a plain consumer cannot link).
+if(TCASIM_BUILD_TESTS)
+  add_test(NAME package_install_and_consume
+           COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+                   -DWORK_DIR=${PROJECT_BINARY_DIR}/package-test "-DGENERATOR=${CMAKE_GENERATOR}"
+                   -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DBUILD_TYPE=$<CONFIG>
+                   -P ${PROJECT_SOURCE_DIR}/cmake/TcasimPackageTest.cmake)
+  set_tests_properties(package_install_and_consume PROPERTIES LABELS package TIMEOUT 300)
+endif()
