@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <utility>
@@ -47,6 +49,60 @@ std::vector<double> parse_range(const std::string& text, const std::string& flag
   const double b = parse_number(parts[1], flag, text);
   const double step = parse_number(parts[2], flag, text);
   return inclusive_grid(a, b, step, flag);
+}
+
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) {
+  Eigen::Vector3d v;
+  std::size_t pos = 0;
+  int k = 0;
+  const std::string rule = "must be three comma-separated finite numbers X,Y,Z";
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    require(k < 3, flag, text, rule);
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    require(used > 0 && item.find_first_not_of(" \t", used) == std::string::npos && std::isfinite(value),
+            flag, text, rule);
+    v[k++] = value;
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  require(k == 3, flag, text, rule);
+  return v;
+}
+
+std::vector<int> actuator_indices(const rod::RodModel& model, const std::string& names,
+                                  const std::string& flag) {
+  std::vector<int> out;
+  if (names.empty()) {
+    for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) out.push_back(i);
+    return out;
+  }
+  std::string all;
+  for (const auto& a : model.actuators) all += (all.empty() ? "" : ", ") + a.name;
+  std::size_t pos = 0;
+  while (pos <= names.size()) {
+    const std::size_t comma = names.find(',', pos);
+    const std::string name = names.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    int found = -1;
+    for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
+      if (model.actuators[i].name == name) found = i;
+    }
+    require(found >= 0, flag, names,
+            "names an actuator the scenario does not have: '" + name + "' (it has: " + all + ")");
+    require(std::find(out.begin(), out.end(), found) == out.end(), flag, names,
+            "names actuator '" + name + "' twice");
+    out.push_back(found);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return out;
 }
 
 std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,

@@ -1,11 +1,14 @@
 #pragma once
-/// Helpers shared by the subcommands: value ranges, count bounds and output destinations.
+/// Helpers shared by the subcommands: value ranges, vectors, actuator lists, count bounds and
+/// output destinations.
+#include <Eigen/Core>
 #include <iosfwd>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "rod/model.hpp"
 #include "tca/tca.hpp"
 
 namespace tcasim::app {
@@ -30,6 +33,14 @@ void require_count(long long value, const std::string& flag, long long lo, long 
 /// Parses "A:B:S" (start, stop, step; the inclusive grid of common/grid.hpp) or a single
 /// value "A". `flag` names the option in error messages.
 std::vector<double> parse_range(const std::string& text, const std::string& flag);
+
+/// "X,Y,Z" -> vector (InputError naming `flag` unless exactly three finite numbers).
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag);
+
+/// Comma-separated actuator names -> model indices (all actuators for an empty text);
+/// InputError naming `flag` for an unknown or repeated name.
+std::vector<int> actuator_indices(const rod::RodModel& model, const std::string& names,
+                                  const std::string& flag);
 
 /// Picks one TCA of a scenario or TCA file (`--tca` id, required when the file has several),
 /// applying the optional material and f12-form overrides. Throws InputError naming the flag.

@@ -1,6 +1,6 @@
 // `tcasim compare` and `tcasim converge`: the FE against the shooting solver on one scenario
 // (the implementation is shared with validate_crosscheck / validate_convergence:
-// validation/common/crosscheck.hpp).
+// crosscheck/crosscheck.hpp).
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -14,13 +14,13 @@
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "rod/scenario.hpp"
-#include "validation/common/crosscheck.hpp"
+#include "crosscheck/crosscheck.hpp"
 
 namespace tcasim::app {
 
 namespace {
 
-namespace xc = tcasim::validation;
+namespace xc = tcasim::crosscheck;
 
 /// Exit code when a solve did not converge (the table is still written).
 constexpr int kExitNotConverged = 4;

@@ -76,8 +76,8 @@ void add_inverse_command(CLI::App& app) {
                        "for a blocked tip)");
     }
     cosserat::InverseOptions o;
-    const Eigen::Vector3d target = cosserat::parse_vector3(flags->target, "--target-m");
-    o.actuators = cosserat::actuator_indices(model, flags->actuators, "--actuators");
+    const Eigen::Vector3d target = parse_vector3(flags->target, "--target-m");
+    o.actuators = actuator_indices(model, flags->actuators, "--actuators");
     if (o.actuators.empty()) {
       throw InputError("--actuators", flags->actuators, "the scenario has no actuator to adjust");
     }

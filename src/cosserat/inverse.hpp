@@ -147,13 +147,4 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
 double blocked_normal_force_N(ShootingSolver& constrained_solver, const rod::RodModel& model,
                               double t_K, Solution& solution);
 
-/// Command-line helper: "X,Y,Z" -> vector (InputError naming `flag` unless exactly three
-/// finite numbers).
-Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag);
-
-/// Command-line helper: comma-separated actuator names -> model indices (all actuators for
-/// an empty text); InputError naming `flag` for an unknown or repeated name.
-std::vector<int> actuator_indices(const rod::RodModel& model, const std::string& names,
-                                  const std::string& flag);
-
 }  // namespace tcasim::cosserat

@@ -20,10 +20,6 @@
 #include "rod/json_file.hpp"
 #include "rod/reference_path.hpp"
 
-#ifndef TCASIM_DATA_DIR
-#error "TCASIM_DATA_DIR must be defined by the build (src/rod/CMakeLists.txt)"
-#endif
-
 namespace tcasim::rod {
 namespace {
 
@@ -706,13 +702,6 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
   }
   check_material_positive_at(m, m.reference_temperature_K, key);
   return m;
-}
-
-std::string data_directory() {
-  if (const char* env = std::getenv("TCASIM_DATA_DIR"); env != nullptr && *env != '\0') {
-    return env;
-  }
-  return TCASIM_DATA_DIR;
 }
 
 tca::Material load_material(const std::string& name, const std::string& key) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/data_dir.hpp"
 #include "rod/model.hpp"
 #include "tca/tca.hpp"
 
@@ -27,12 +28,13 @@ std::map<std::string, std::shared_ptr<const tca::Tca>> read_tcas(const std::stri
 tca::Material parse_material(const nlohmann::json& j, const std::string& key);
 
 /// Loads a shipped material by name: `<data dir>/materials/<name>.json`. The data dir is
-/// the environment variable TCASIM_DATA_DIR if set, else the source tree's data/. A bad
+/// data_directory() (common/data_dir.hpp: the environment variable TCASIM_DATA_DIR if set,
+/// else the installed package's data, else the source tree's data/). A bad
 /// or unknown name is reported under `key` (listing the shipped names); an error inside
 /// the file under `<file path>:<key in the file>`. The material's name is `name`.
 tca::Material load_material(const std::string& name, const std::string& key);
 
-/// Directory holding shipped data (materials/, scenarios).
-std::string data_directory();
+/// Directory holding shipped data (materials/, scenarios/): common/data_dir.hpp.
+using tcasim::data_directory;
 
 }  // namespace tcasim::rod

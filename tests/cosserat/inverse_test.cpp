@@ -376,14 +376,6 @@ TEST(InverseRejections, BadInputsNameTheFlagValueAndRule) {
   expect_input_error([&] { solve_grasp(gripper_finger(), rk4(), o); }, "friction");
 
   const rod::RodModel m = tca_rod({0.0, 90.0}, {25.0, 25.0});
-  expect_input_error([&] { parse_vector3("0.01,0", "--target-m"); }, "--target-m");
-  expect_input_error([&] { parse_vector3("0.01,0,x", "--target-m"); }, "--target-m");
-  expect_input_error([&] { parse_vector3("0.01,0,0,1", "--target-m"); }, "--target-m");
-  EXPECT_EQ(parse_vector3("0.01, 0,-2e-3", "--target-m"), Vector3d(0.01, 0.0, -2e-3));
-  expect_input_error([&] { actuator_indices(m, "tca0,nope", "--actuators"); }, "--actuators");
-  expect_input_error([&] { actuator_indices(m, "tca0,tca0", "--actuators"); }, "--actuators");
-  EXPECT_EQ(actuator_indices(m, "tca1", "--actuators"), std::vector<int>{1});
-  EXPECT_EQ(actuator_indices(m, "", "--actuators"), (std::vector<int>{0, 1}));
   InverseOptions io;
   io.max_temperature_K = degC_to_K(20.0);  // below ambient
   expect_input_error([&] { inverse_from_rest(m, Vector3d(0, 0, 0.04), io); }, "max_temperature_degC");

@@ -45,12 +45,12 @@
 
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
-#include "validation/common/crosscheck.hpp"
+#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
 
-namespace xc = tcasim::validation;
+namespace xc = tcasim::crosscheck;
 
 /// The reference must resolve the finest FE error: its estimated error below this fraction of it.
 constexpr double kReferenceFraction = 0.01;

@@ -48,12 +48,12 @@
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "tca/tca.hpp"
-#include "validation/common/crosscheck.hpp"
+#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
 
-namespace xc = tcasim::validation;
+namespace xc = tcasim::crosscheck;
 
 /// The gate: FE vs shooting at the finest mesh, relative to the body length.
 constexpr double kAgreementOverL = 1e-9;
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
     }
 
     fmt::print("Step 4: gates\n");
-    xc::Gates gates("validate_crosscheck");
+    tcasim::validation::Gates gates("validate_crosscheck");
     // Every suite scenario must be cross-checked: one a solver does not support is a failure.
     gates.expect_count("scenarios", entries.size(), expected);
     for (const auto& [name, why] : skipped) gates.not_run(name, why);

@@ -46,7 +46,7 @@
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
-#include "validation/common/crosscheck.hpp"
+#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
@@ -258,9 +258,9 @@ int main(int argc, char** argv) {
       }
     }
     gates.expect_count("scenarios", solved,
-                       tcasim::validation::expected_scenarios(
+                       tcasim::crosscheck::expected_scenarios(
                            scenario_dir, {},
-                           scenario_dir == TCASIM_SCENARIO_DIR ? tcasim::validation::kShippedSuiteScenarios : 1));
+                           scenario_dir == TCASIM_SCENARIO_DIR ? tcasim::crosscheck::kShippedSuiteScenarios : 1));
     gates.write_csv(out_dir);
     fmt::print("Wrote {}/shapes_summary.csv, <name>.vtp, <name>_shape.csv and gates.csv\n", out_dir);
     return gates.finish();

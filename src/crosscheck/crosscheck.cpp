@@ -1,4 +1,4 @@
-#include "validation/common/crosscheck.hpp"
+#include "crosscheck/crosscheck.hpp"
 
 #include <fmt/format.h>
 
@@ -17,7 +17,7 @@
 #include "cosserat/shooting.hpp"
 #include "rod/scenario.hpp"
 
-namespace tcasim::validation {
+namespace tcasim::crosscheck {
 
 namespace {
 
@@ -454,4 +454,4 @@ StudyLevels study_levels(const std::string& scenario, int order, bool quick) {
   return {8, count, ""};
 }
 
-}  // namespace tcasim::validation
+}  // namespace tcasim::crosscheck

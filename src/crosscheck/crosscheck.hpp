@@ -20,7 +20,7 @@
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
-namespace tcasim::validation {
+namespace tcasim::crosscheck {
 
 /// Paths of the `tcasim.scenario/1` files in `dir` (other JSON schemas are left out),
 /// sorted by file name. Throws InputError if `dir` is not a readable folder.
@@ -241,4 +241,4 @@ std::vector<FeSettings> crosscheck_meshes(bool quick);
 /// applies, see beam_fe::Discretization::round_off_floor).
 FeSettings tight_tolerances();
 
-}  // namespace tcasim::validation
+}  // namespace tcasim::crosscheck

@@ -1,5 +1,5 @@
-// Tests of the shared cross-check / convergence logic (validation/common/crosscheck.hpp).
-#include "validation/common/crosscheck.hpp"
+// Tests of the shared cross-check / convergence logic (crosscheck/crosscheck.hpp).
+#include "crosscheck/crosscheck.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "common/so3.hpp"
 #include "support/rod_models.hpp"
 
-namespace tcasim::validation {
+namespace tcasim::crosscheck {
 namespace {
 
 /// Closed-form inputs evaluated in double precision: only round-off remains.
@@ -223,4 +223,4 @@ TEST(AsymptoticRange, StiffCantileverStudyReportsTheFloorInsteadOfAReversedOrder
 }
 
 }  // namespace
-}  // namespace tcasim::validation
+}  // namespace tcasim::crosscheck

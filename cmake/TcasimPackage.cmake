@@ -1,0 +1,69 @@
+# The installable package: `cmake --install` puts the libraries, their headers, the shipped
+# data and the `tcasim` program under the prefix, with a CMake package so a project can
+#   find_package(tcasim 0.1 REQUIRED)
+#   target_link_libraries(app PRIVATE tcasim::tcasim)        # or single components
+# Components (exported names): tcasim::common, tca, rod, cosserat, beam_fe, crosscheck;
+# tcasim::tcasim links them all. Layout:
+#   <prefix>/include/tcasim/...            headers (as under src/: "rod/scenario.hpp");
+#                                          the umbrella header is <tcasim/tcasim.hpp>
+#   <prefix>/lib/libtcasim_*.a             the libraries
+#   <prefix>/lib/cmake/tcasim/             tcasimConfig.cmake, version file, targets
+#   <prefix>/share/tcasim/materials/       shipped material laws (common/data_dir.hpp)
+#   <prefix>/share/tcasim/scenarios/       shipped scenarios
+#   <prefix>/bin/tcasim                    the command-line program
+include(CMakePackageConfigHelpers)
+
+set(TCASIM_COMPONENTS common tca rod cosserat beam_fe crosscheck)
+set(TCASIM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/tcasim")
+
+# The umbrella target: every component. Its target name differs from the `tcasim` program's.
+add_library(tcasim_tcasim INTERFACE)
+add_library(tcasim::tcasim ALIAS tcasim_tcasim)
+set_target_properties(tcasim_tcasim PROPERTIES EXPORT_NAME tcasim)
+
+set(_tcasim_targets tcasim_tcasim)
+foreach(component IN LISTS TCASIM_COMPONENTS)
+  set(target tcasim_${component})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${component})
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  target_link_libraries(tcasim_tcasim INTERFACE tcasim::${component})
+  list(APPEND _tcasim_targets ${target})
+endforeach()
+
+install(TARGETS ${_tcasim_targets} EXPORT tcasimTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
+        INCLUDES DESTINATION ${TCASIM_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${TCASIM_INSTALL_INCLUDEDIR}
+        COMPONENT development FILES_MATCHING PATTERN "*.hpp")
+install(EXPORT tcasimTargets NAMESPACE tcasim:: DESTINATION ${TCASIM_INSTALL_CMAKEDIR}
+        COMPONENT development)
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/tcasimConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/tcasimConfig.cmake
+  INSTALL_DESTINATION ${TCASIM_INSTALL_CMAKEDIR}
+  PATH_VARS TCASIM_INSTALL_DATADIR)
+# 0.x: a minor version may break the interface.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/tcasimConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/tcasimConfig.cmake ${PROJECT_BINARY_DIR}/tcasimConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/TcasimSuiteSparse.cmake
+        DESTINATION ${TCASIM_INSTALL_CMAKEDIR} COMPONENT development)
+
+# Shipped data, found at run time relative to the installed program or library.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${TCASIM_INSTALL_DATADIR} COMPONENT runtime)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/validation/scenarios/ DESTINATION ${TCASIM_INSTALL_DATADIR}/scenarios
+        COMPONENT runtime)
+install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+unset(_tcasim_targets)
+
+# The install as a consumer sees it (label `package`: in the default test run, not in the
+# sanitizer run, whose instrumented libraries a plain consumer cannot link).
+if(TCASIM_BUILD_TESTS)
+  add_test(NAME package_install_and_consume
+           COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+                   -DWORK_DIR=${PROJECT_BINARY_DIR}/package-test "-DGENERATOR=${CMAKE_GENERATOR}"
+                   -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DBUILD_TYPE=$<CONFIG>
+                   -P ${PROJECT_SOURCE_DIR}/cmake/TcasimPackageTest.cmake)
+  set_tests_properties(package_install_and_consume PROPERTIES LABELS package TIMEOUT 300)
+endif()

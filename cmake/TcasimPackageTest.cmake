@@ -1,0 +1,57 @@
+# ctest `package_install_and_consume` (cmake -P): installs the build into a fresh prefix,
+# configures and builds examples/solve_scenario against it (find_package(tcasim)), installs
+# the example into the same prefix and runs it there: it must solve the shipped scenario
+# and find the shipped materials in the installed data folder, not in the source tree.
+# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE.
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER BUILD_TYPE)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "TcasimPackageTest.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+set(prefix "${WORK_DIR}/prefix")
+set(example_build "${WORK_DIR}/example-build")
+file(REMOVE_RECURSE "${WORK_DIR}")
+
+run("installing the build" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
+foreach(file include/tcasim/tcasim/tcasim.hpp lib/cmake/tcasim/tcasimConfig.cmake
+             lib/cmake/tcasim/tcasimConfigVersion.cmake share/tcasim/materials bin/tcasim)
+  if(NOT EXISTS "${prefix}/${file}")
+    file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
+    message(FATAL_ERROR "the install lacks ${file}; it holds:\n${installed}")
+  endif()
+endforeach()
+
+run("configuring the example" ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/solve_scenario"
+    -B "${example_build}" -G "${GENERATOR}" -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+    -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${prefix}")
+run("building the example" ${CMAKE_COMMAND} --build "${example_build}")
+run("installing the example" ${CMAKE_COMMAND} --install "${example_build}" --prefix "${prefix}")
+
+# Run from the prefix with TCASIM_DATA_DIR unset: the data must come from the install.
+run("running the installed example" ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_DIR
+    "${prefix}/bin/solve_scenario")
+message("${run_output}")
+file(REAL_PATH "${prefix}/share/tcasim" installed_data)
+string(FIND "${run_output}" "data: ${installed_data}\n" at)
+if(at LESS 0)
+  message(FATAL_ERROR "the installed example did not use the installed data ${installed_data}")
+endif()
+if(NOT run_output MATCHES "scenario: circular-manipulator\n.*tip_m: [-+0-9.e]+ [-+0-9.e]+ [-+0-9.e]+\n")
+  message(FATAL_ERROR "the installed example printed no tip of circular-manipulator")
+endif()
+
+# The installed program solves the same installed scenario.
+run("running the installed tcasim" ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_DIR
+    "${prefix}/bin/tcasim" solve "${prefix}/share/tcasim/scenarios/circular-manipulator.json")
+if(NOT run_output MATCHES "\"converged\": true")
+  message(FATAL_ERROR "the installed tcasim did not solve the installed scenario:\n${run_output}")
+endif()

@@ -1,0 +1,70 @@
+#include "common/data_dir.hpp"
+
+#include <dlfcn.h>
+#include <link.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#if !defined(TCASIM_BUILD_DATA_DIR) || !defined(TCASIM_INSTALL_DATA_DIR) || \
+    !defined(TCASIM_BINDIR_TO_DATA_DIR) || !defined(TCASIM_LIBDIR_TO_DATA_DIR)
+#error "the data folders must be defined by the build (src/common/CMakeLists.txt)"
+#endif
+
+namespace tcasim {
+
+namespace {
+
+/// Folder of the program or shared library this function was linked into (empty when it
+/// cannot be told). The dynamic loader names a shared library (link_map::l_name); the main
+/// program it leaves unnamed (dladdr would give argv[0], which need not be a path), and
+/// /proc/self/exe names it.
+std::filesystem::path own_module_folder() {
+  Dl_info info{};
+  link_map* map = nullptr;
+  std::string module;
+  if (dladdr1(reinterpret_cast<void*>(&own_module_folder), &info, reinterpret_cast<void**>(&map),
+              RTLD_DL_LINKMAP) != 0 &&
+      map != nullptr && map->l_name != nullptr) {
+    module = map->l_name;
+  }
+  std::error_code ec;
+  const std::filesystem::path path = module.empty() ? std::filesystem::read_symlink("/proc/self/exe", ec)
+                                                    : std::filesystem::canonical(module, ec);
+  return ec ? std::filesystem::path() : path.parent_path();
+}
+
+}  // namespace
+
+std::vector<std::string> data_directory_candidates() {
+  std::vector<std::string> out;
+  const auto add = [&out](const std::string& dir) {
+    if (std::find(out.begin(), out.end(), dir) == out.end()) out.push_back(dir);
+  };
+  if (const char* env = std::getenv("TCASIM_DATA_DIR"); env != nullptr && *env != '\0') {
+    out.emplace_back(env);
+  }
+  if (const std::filesystem::path own = own_module_folder(); !own.empty()) {
+    add((own / TCASIM_BINDIR_TO_DATA_DIR).lexically_normal().string());
+    add((own / TCASIM_LIBDIR_TO_DATA_DIR).lexically_normal().string());
+  }
+  add(TCASIM_INSTALL_DATA_DIR);
+  add(TCASIM_BUILD_DATA_DIR);
+  return out;
+}
+
+std::string data_directory() {
+  if (const char* env = std::getenv("TCASIM_DATA_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  for (const std::string& dir : data_directory_candidates()) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(std::filesystem::path(dir) / "materials", ec)) return dir;
+  }
+  return TCASIM_BUILD_DATA_DIR;
+}
+
+}  // namespace tcasim
