@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "common/finite_difference.hpp"
+#include "common/root_finding.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
 
@@ -24,10 +26,6 @@ using state_layout::kDelta;
 using state_layout::kP;
 using state_layout::kR;
 
-/// Relative finite-difference steps: sqrt(eps) (forward) and eps^(1/3) (central) balance
-/// truncation and round-off errors.
-constexpr double kForwardStep = 1.4901161193847656e-08;
-constexpr double kCentralStep = 6.0554544523933395e-06;
 /// Typical temperature scale [K] for the difference step (absolute temperatures ~300 K).
 constexpr double kTypicalTemperature_K = 300.0;
 /// Bounded least squares is stationary when the projected gradient |J^T e| is below this
@@ -198,7 +196,7 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
       // A tension drive enters the IVP: central differences (two IVPs).
       Actuation a = actuation;
       const double v = get_variable(model, actuation, i);
-      const double h = kCentralStep * variable_scale(model, i, v, Fc);
+      const double h = fd::kCentralRelativeStep * variable_scale(model, i, v, Fc);
       set_variable(model, a, i, v + h);
       out.ivp_count += 2;
       if (!solver.residual_and_tip_state(a, x, rp, yp)) return false;
@@ -215,7 +213,7 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
     BW.block<3, 3>(3, 3) = -R0.transpose() / (Fc * L);
   } else {
     const bool central = method == TipDerivativeMethod::kCentralDifference;
-    const double step = central ? kCentralStep : kForwardStep;
+    const double step = fd::relative_step(central);  // common/finite_difference.hpp
     ++out.ivp_count;
     if (!solver.residual_and_tip_state(actuation, x, r0, y0)) return false;
     const Mat3 R0 = rotation_of(y0);
@@ -697,47 +695,30 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
   if (bsol.tip_state.size() > 0) res.tip_position_W_m = bsol.tip_state.segment<3>(kP);
 
   if (options.cross_check && converged) {
-    // Bracketed root of g(T) = F_blocked(T) - F_req on [t_lo, t_hi] (Illinois regula falsi).
+    // Bracketed root of g(T) = F_blocked(T) - F_req on [t_lo, t_hi] (Brent's method).
     Solution rsol;
     auto g = [&](double t) {
       ++res.root_evaluations;
       return blocked_normal_force_N(cs, model, t, rsol) - F_req;
     };
-    double a0 = t_lo, b0 = t_hi, ga = g(a0), gb = g(b0);
+    const double ga = g(t_lo), gb = g(t_hi);
     if (!std::isfinite(ga) || !std::isfinite(gb)) {
       why = "blocked-tip solve failed at a bracket end";
       converged = false;
-    } else if ((ga > 0.0) == (gb > 0.0)) {
+    } else if ((ga > 0.0) == (gb > 0.0) && ga != 0.0 && gb != 0.0) {
       why = "the blocked-tip force minus the required force does not change sign on [" +
             format_value(units::K_to_degC(t_lo)) + ", " + format_value(units::K_to_degC(t_hi)) +
             "] degC";
       converged = false;
     } else {
-      int side = 0;
-      for (int k = 0; k < 200 && b0 - a0 > kRootTolerance_K; ++k) {
-        double c = (a0 * gb - b0 * ga) / (gb - ga);
-        if (!(c > a0 && c < b0)) c = 0.5 * (a0 + b0);
-        const double gc = g(c);
-        if (!std::isfinite(gc)) { converged = false; why = "blocked-tip solve failed"; break; }
-        if (gc == 0.0) { a0 = b0 = c; break; }
-        if ((gc > 0.0) == (gb > 0.0)) {
-          b0 = c; gb = gc;
-          if (side == -1) ga *= 0.5;  // Illinois: halve the stale end's value
-          side = -1;
-        } else {
-          a0 = c; ga = gc;
-          if (side == +1) gb *= 0.5;
-          side = +1;
-        }
-        // Secant steps may hug one end: bisect when the bracket stops shrinking fast.
-        if (k % 4 == 3) {
-          const double mid = 0.5 * (a0 + b0), gm = g(mid);
-          if (!std::isfinite(gm)) { converged = false; why = "blocked-tip solve failed"; break; }
-          if ((gm > 0.0) == (gb > 0.0)) { b0 = mid; gb = gm; } else { a0 = mid; ga = gm; }
-          side = 0;
-        }
+      // A bracket shorter than 2 * (kRootTolerance_K / 2): the root to kRootTolerance_K.
+      const auto root = roots::brent(g, t_lo, t_hi, ga, gb, 0.5 * kRootTolerance_K);
+      if (root) {
+        res.root_temperature_K = root->x;
+      } else {
+        converged = false;
+        why = "blocked-tip solve failed";
       }
-      res.root_temperature_K = 0.5 * (a0 + b0);
     }
   }
   res.converged = converged;
