@@ -186,7 +186,6 @@ class Discretization {
   Quadrature quad_;
   std::vector<int> tca_actuators_;  // actuator index of each TCA unknown
   std::vector<int> tca_unknown_;    // per actuator: its TCA unknown or -1
-  std::vector<double> start_temperature_K_;  // per actuator: temperature at lambda = 0
   Eigen::VectorXd nodal_dead_load_;  // gravity + tip force on free-node dofs (lambda = 1)
   std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position

@@ -8,6 +8,7 @@
 #include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
 #include "common/so3.hpp"
+#include "rod/closed_form.hpp"
 
 namespace tcasim::beam_fe {
 namespace {
@@ -16,20 +17,12 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
-/// The segments of a TCA drive at load factor lambda: temperatures ramp from the material's
-/// reference temperature (start_K) with the load factor.
-std::vector<tca::Segment> ramped_segments(const rod::Actuator& act, double start_K, double lambda) {
-  std::vector<tca::Segment> segments = act.drive.segments;
-  for (tca::Segment& seg : segments) seg.temperature_K = start_K + lambda * (seg.temperature_K - start_K);
-  return segments;
-}
-
 /// The TCA row of one string: phi(T, delta) with coil contact (tca::contact_residual), zero
 /// where the tension T and the elongation delta satisfy the TCA law.
-tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m,
-                             double start_K, double lambda) {
-  return tca::contact_residual(*act.drive.tca, tension_N, elongation_m,
-                               ramped_segments(act, start_K, lambda));
+tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m, double lambda) {
+  std::vector<tca::Segment> segments;
+  rod::ramp_segments(act.drive.tca->material(), act.drive.segments, lambda, segments);
+  return tca::contact_residual(*act.drive.tca, tension_N, elongation_m, segments);
 }
 
 }  // namespace
@@ -59,7 +52,6 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   }
 
   tca_unknown_.assign(model.actuators.size(), -1);
-  start_temperature_K_.assign(model.actuators.size(), 0.0);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     const rod::Actuator& act = model.actuators[i];
     if (act.drive.type != rod::Drive::Type::kTca) continue;
@@ -69,9 +61,6 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
     }
     tca_unknown_[i] = static_cast<int>(tca_actuators_.size());
     tca_actuators_.push_back(static_cast<int>(i));
-    const tca::Material& mat = act.drive.tca->material();
-    start_temperature_K_[i] =
-        std::clamp(mat.reference_temperature_K, mat.min_temperature_K, mat.max_temperature_K);
   }
 
   // Consistent nodal dead loads: gravity int N_a psi A g ds (exact with the element rule:
@@ -189,68 +178,32 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   for (const rod::Actuator& a : model.actuators) {
     if (a.routing.type != rod::Routing::Type::kStraight) return false;
   }
-  const Vector3d Kn = model.shear_extension_stiffness(), Ko = model.bending_torsion_stiffness();
-  std::vector<Vector3d> r(n_act);
-  for (std::size_t i = 0; i < n_act; ++i) r[i] = model.actuators[i].routing.r(0.0);
-  // conventions.md closed form: nu_3 = 1 - sum c T / EA, omega_x = omega*_x - sum c T r_y / EI_x,
-  // omega_y = omega*_y + sum c T r_x / EI_y; with d(nu, omega)/dT_j the linear map below.
-  auto strains = [&](const std::vector<double>& T, Vector3d& nu, Vector3d& omega) {
-    nu = Vector3d::UnitZ();
-    omega = model.reference_curvature_B_1_m;
-    for (std::size_t j = 0; j < n_act; ++j) {
-      const double cT = model.actuators[j].count * T[j];
-      nu.z() -= cT / Kn.z();
-      omega.x() -= cT * r[j].y() / Ko.x();
-      omega.y() += cT * r[j].x() / Ko.y();
-    }
-  };
-  std::vector<double> T(n_act, 0.0);
+  // The closed form (rod/closed_form.hpp) of the tension drives, with the TCA tensions
+  // solving phi_i(T_i, delta_i(T)) = 0 (the TCA law with coil contact) at its elongations
+  // delta_i = L |nu + omega x r_i| - rest_i (exact for constant strains and straight strings).
+  std::vector<double> T(n_act, 0.0), cT(n_act, 0.0);
   for (std::size_t i = 0; i < n_act; ++i) {
     if (model.actuators[i].drive.type == rod::Drive::Type::kTension) T[i] = lambda * model.actuators[i].drive.tension_N;
+    cT[i] = model.actuators[i].count * T[i];
   }
   const std::size_t k = tca_actuators_.size();
   if (k > 0) {
-    // Newton on g_i = phi_i(T_i, l_i(T) - rest_i) (the TCA law with coil contact),
-    // l_i = L |nu + omega x r_i| (exact for constant strains and straight strings).
-    constexpr int kMaxTensionIterations = 30;
-    constexpr double kTensionTolerance = 1e-13;  // relative: far below the FE's own tolerance
-    try {
-      for (int it = 0; it < kMaxTensionIterations; ++it) {
-        Vector3d nu, omega;
-        strains(T, nu, omega);
-        Eigen::VectorXd g(k);
-        Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k);
-        double size = 0.0;
-        for (std::size_t a = 0; a < k; ++a) {
-          const int i = tca_actuators_[a];
-          const rod::Actuator& act = model.actuators[i];
-          const Vector3d q = nu + omega.cross(r[i]);
-          const Vector3d qh = q.normalized();
-          const tca::ContactResidual f = tca_row(act, T[i], model.length_m * q.norm() - act.rest_length_m,
-                                                 start_temperature_K_[i], lambda);
-          g[a] = f.phi_N;
-          J(a, a) = f.dphi_dF;
-          size = std::max(size, std::abs(T[i] - f.phi_N));
-          for (std::size_t b = 0; b < k; ++b) {
-            const int j = tca_actuators_[b];
-            const double c = model.actuators[j].count;
-            const Vector3d dnu(0.0, 0.0, -c / Kn.z());
-            const Vector3d domega(-c * r[j].y() / Ko.x(), c * r[j].x() / Ko.y(), 0.0);
-            const double dl = model.length_m * qh.dot(dnu + domega.cross(r[i]));
-            J(a, b) += f.dphi_ddelta_N_m * dl;
-          }
-        }
-        const Eigen::VectorXd dT = J.partialPivLu().solve(-g);
-        if (!dT.allFinite()) return false;
-        for (std::size_t a = 0; a < k; ++a) T[tca_actuators_[a]] += dT[a];
-        if (dT.lpNorm<Eigen::Infinity>() <= kTensionTolerance * std::max(size, 1e-300)) break;
-      }
-    } catch (const DomainError&) {
+    std::vector<std::vector<tca::Segment>> segments(n_act);
+    for (const int i : tca_actuators_) {
+      const rod::Actuator& act = model.actuators[i];
+      rod::ramp_segments(act.drive.tca->material(), act.drive.segments, lambda, segments[i]);
+    }
+    rod::GuessTensionOptions options;
+    options.tolerance_rel = 1e-13;  // far below the FE's own tolerance
+    Eigen::VectorXd T_tca = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(k));
+    if (!rod::solve_guess_tensions(model, tca_actuators_, segments, Eigen::Matrix<double, 6, 1>::Zero(), options,
+                                   cT, T_tca)) {
       return false;
     }
+    for (std::size_t a = 0; a < k; ++a) T[tca_actuators_[a]] = T_tca[static_cast<Eigen::Index>(a)];
   }
-  Vector3d nu, omega;
-  strains(T, nu, omega);
+  const rod::ConstantStrains cf = rod::closed_form_strains(model, cT);
+  const Vector3d nu = Vector3d::UnitZ() + cf.e, omega = cf.omega;
   if (!nu.allFinite() || !omega.allFinite()) return false;
   State st = reference_state();
   const Eigen::Quaterniond q0(model.R_WB0);
@@ -470,7 +423,7 @@ VectorXd Discretization::residual(const State& state, double lambda,
     const rod::Actuator& act = model.actuators[a];
     const int row = free_dofs + static_cast<int>(j);
     const tca::ContactResidual f = tca_row(act, state.tensions_N[a], lengths[a] - act.rest_length_m,
-                                           start_temperature_K_[a], lambda);
+                                           lambda);
     r[row] = f.phi_N;
     if (!tangent) continue;
     const int* slots = &tca_slots_[j * stride];

@@ -14,13 +14,14 @@
 //       + 1/2 hat(r_theta,a) on each node's rotation block,
 // the last term from exp(eta) exp(theta) = exp(eta + theta + eta x theta / 2 + ...).
 // The strain map's coefficients a, b, c, d are functions of t^2 = |psi|^2 only; their first
-// and second t^2-derivatives come from scalar nested dual numbers (dual.hpp), and every
+// and second t^2-derivatives come from scalar nested dual numbers (common/dual.hpp), and every
 // psi-derivative (first derivatives of the strains and of Jr^-1, second derivatives of the
 // strain map contracted with the stresses) is written in closed form from them.
 #include <cmath>
 
 #include "beam_fe/beam_fe.hpp"
-#include "beam_fe/dual.hpp"
+#include "common/dual.hpp"
+#include "common/lie_series.hpp"
 #include "common/so3.hpp"
 
 namespace tcasim::beam_fe {
@@ -52,10 +53,10 @@ void shape(int order, double xi, double* N, double* dN_dxi) {
   }
 }
 
-/// The coefficients a, b, c, d (dual.hpp) at t2 = |psi|^2 and their first and second
+/// The coefficients a, b, c, d (common/lie_series.hpp) at t2 = |psi|^2 and their first and second
 /// derivatives with respect to t2, from a scalar nested dual seeded on t2.
 struct CoefficientJet {
-  ad::Coefficients<double> f, df, ddf;
+  so3::Coefficients<double> f, df, ddf;
 };
 CoefficientJet coefficient_jet(double t2) {
   using S1 = ad::Dual<double, 1>;
@@ -63,7 +64,7 @@ CoefficientJet coefficient_jet(double t2) {
   S2 x(t2);
   x.v.d[0] = 1.0;
   x.d[0] = S1(1.0);
-  const ad::Coefficients<S2> k = ad::coefficients(x);
+  const so3::Coefficients<S2> k = so3::coefficients(x);
   CoefficientJet j;
   auto unpack = [](const S2& y, double& f, double& df, double& ddf) {
     f = y.v.v;
@@ -174,8 +175,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     // Strains and their psi-derivatives: nu = exp(psi)^T y', omega = Jr(psi) psi'.
     const double t2 = ps.squaredNorm();
     const CoefficientJet jet = coefficient_jet(t2);
-    const ad::Coefficients<double>& k0 = jet.f;
-    const ad::Coefficients<double>& k1 = jet.df;
+    const so3::Coefficients<double>& k0 = jet.f;
+    const so3::Coefficients<double>& k1 = jet.df;
     const Vector3d nu = rotation_operator(ps, t2, -k0.a, k0.b, yp);     // exp(psi)^T y'
     const Vector3d omega = rotation_operator(ps, t2, -k0.b, k0.c, pp);  // Jr(psi) psi'
     const Matrix3d Kp = so3::hat(ps);
@@ -241,7 +242,7 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
       // scalar triple products (a x b . c = a . (b x c)):
       //   s = -a psi.(y' x s_nu) + b ((psi.s_nu)(psi.y') - t2 s_nu.y')
       //       - b psi.(psi' x s_om) + c ((psi.s_om)(psi.psi') - t2 s_om.psi') + const.
-      const ad::Coefficients<double>& k2 = jet.ddf;
+      const so3::Coefficients<double>& k2 = jet.ddf;
       Matrix3d H = Matrix3d::Zero();
       add_linear_term_hessian(H, ps, -k1.a, -k2.a, yp.cross(s_nu));
       add_quadratic_term_hessian(H, ps, t2, k0.b, k1.b, k2.b, s_nu, yp);

@@ -3,39 +3,6 @@
 #include <cmath>
 
 namespace tcasim::so3 {
-namespace {
-
-/// Coefficients of I, hat(phi), hat(phi)^2 shared by exp and the Jacobians:
-///   a = sin(t)/t,  b = (1 - cos t)/t^2,  c = (t - sin t)/t^3,
-///   d = 1/t^2 - (1 + cos t)/(2 t sin t) = 1/t^2 - cot(t/2)/(2 t).
-struct Coefficients {
-  double a, b, c, d;
-};
-
-Coefficients coefficients(double t) {
-  const double t2 = t * t;
-  if (t < kSmallAngleThreshold) {
-    // Taylor series; the first dropped terms are O(t^4) <= 1e-16 relative.
-    return {1.0 - t2 / 6.0, 0.5 - t2 / 24.0, 1.0 / 6.0 - t2 / 120.0, 1.0 / 12.0 + t2 / 720.0};
-  }
-  const double s = std::sin(t);
-  const double half_sin = std::sin(0.5 * t);
-  // 1 - cos t = 2 sin^2(t/2) avoids the cancellation of 1 - cos t.
-  const double one_minus_cos = 2.0 * half_sin * half_sin;
-  // cot(t/2) = cos(t/2)/sin(t/2) stays finite at t = pi, where (1 + cos t)/sin t is 0/0.
-  const double cot_half = std::cos(0.5 * t) / half_sin;
-  return {s / t, one_minus_cos / t2, (t - s) / (t2 * t), 1.0 / t2 - cot_half / (2.0 * t)};
-}
-
-}  // namespace
-
-Eigen::Matrix3d hat(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(),  //
-      v.z(), 0.0, -v.x(),   //
-      -v.y(), v.x(), 0.0;
-  return m;
-}
 
 Eigen::Vector3d vee(const Eigen::Matrix3d& m) {
   // Skew part of m: (m - m^T)/2.
@@ -44,7 +11,7 @@ Eigen::Vector3d vee(const Eigen::Matrix3d& m) {
 
 // [Sola2018] Rodrigues: exp(phi) = I + a hat(phi) + b hat(phi)^2.
 Eigen::Matrix3d exp(const Eigen::Vector3d& phi) {
-  const Coefficients k = coefficients(phi.norm());
+  const Coefficients<double> k = coefficients(phi.squaredNorm());
   const Eigen::Matrix3d K = hat(phi);
   return Eigen::Matrix3d::Identity() + k.a * K + k.b * K * K;
 }
@@ -84,14 +51,14 @@ Eigen::Vector3d log(const Eigen::Matrix3d& R) {
 
 // [Sola2018] Jr(phi) = I - b hat(phi) + c hat(phi)^2.
 Eigen::Matrix3d right_jacobian(const Eigen::Vector3d& phi) {
-  const Coefficients k = coefficients(phi.norm());
+  const Coefficients<double> k = coefficients(phi.squaredNorm());
   const Eigen::Matrix3d K = hat(phi);
   return Eigen::Matrix3d::Identity() - k.b * K + k.c * K * K;
 }
 
 // [Sola2018] Jr^-1(phi) = I + hat(phi)/2 + d hat(phi)^2.
 Eigen::Matrix3d right_jacobian_inverse(const Eigen::Vector3d& phi) {
-  const Coefficients k = coefficients(phi.norm());
+  const Coefficients<double> k = coefficients(phi.squaredNorm());
   const Eigen::Matrix3d K = hat(phi);
   return Eigen::Matrix3d::Identity() + 0.5 * K + k.d * K * K;
 }

@@ -3,23 +3,23 @@
 /// Conventions: exp(hat(phi)) rotates by |phi| about phi/|phi|; the right Jacobian
 /// satisfies exp(phi + dphi) = exp(phi) exp(Jr(phi) dphi) + O(dphi^2), the left one
 /// exp(phi + dphi) = exp(Jl(phi) dphi) exp(phi). log returns the angle in [0, pi].
-/// Small-angle branches: below kSmallAngleThreshold the closed-form coefficients are
-/// replaced by their Taylor series (see so3.cpp), so every function is accurate to
-/// round-off near 0. log goes through the quaternion (Shepperd's method, then
+/// Small-angle branches: the coefficients of exp and the Jacobians are those of
+/// common/lie_series.hpp (Taylor series in t^2 below kSeriesBelowAngleSquared); the
+/// quaternion maps switch to their series below kSmallAngleThreshold; so every function is
+/// accurate to round-off near 0. log goes through the quaternion (Shepperd's method, then
 /// 2 atan2(|v|, w)), which keeps it accurate to round-off near pi.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "common/lie_series.hpp"
+
 namespace tcasim::so3 {
 
-/// Rotation angle [rad] below which Taylor series replace the closed forms. At 1e-4
-/// the first dropped series term is O(theta^4) ~ 1e-16 relative (round-off), while
-/// the closed forms lose at most ~eps/theta^2 ~ 1e-8 relative in O(theta^2)
-/// correction terms, i.e. ~eps absolute in the matrices.
+/// Rotation angle [rad] below which exp_quaternion and log(quaternion) use their Taylor
+/// series. At 1e-4 the first dropped term is O(theta^4) ~ 1e-16 relative (round-off).
 inline constexpr double kSmallAngleThreshold = 1e-4;
 
-/// hat(v) w = v x w.
-Eigen::Matrix3d hat(const Eigen::Vector3d& v);
+// hat(v) w = v x w: common/lie_series.hpp.
 /// Inverse of hat (reads the skew part of m).
 Eigen::Vector3d vee(const Eigen::Matrix3d& m);
 

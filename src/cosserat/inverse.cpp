@@ -10,51 +10,29 @@
 #include <utility>
 
 #include "common/error.hpp"
-#include "common/so3.hpp"
+#include "common/root_finding.hpp"
 #include "common/units.hpp"
+#include "cosserat/inverse_internal.hpp"
 
 namespace tcasim::cosserat {
 
 namespace {
 
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
-
-using state_layout::kDelta;
 using state_layout::kP;
 using state_layout::kR;
 
-/// Relative finite-difference steps: sqrt(eps) (forward) and eps^(1/3) (central) balance
-/// truncation and round-off errors.
-constexpr double kForwardStep = 1.4901161193847656e-08;
-constexpr double kCentralStep = 6.0554544523933395e-06;
 /// Typical temperature scale [K] for the difference step (absolute temperatures ~300 K).
 constexpr double kTypicalTemperature_K = 300.0;
-/// Bounded least squares is stationary when the projected gradient |J^T e| is below this
-/// fraction of |J| |e| (the cosine between the error and the reachable directions): J is
-/// exact to ~1e-10 (sensitivities) or ~1e-8 (forward differences), so 1e-7 is attainable
-/// and locates the optimum well within the tip tolerance (the distance is second order).
-constexpr double kStationarity = 1e-7;
-/// A step is considered nil (no move possible inside the bounds) below this fraction of
-/// the variables' scale.
-constexpr double kNilStep = 1e-13;
-/// Trust region on the step, measured relative to each variable's scale (300 K, or the
-/// tension scale): starting radius 0.1 (30 K, the TCA laws are strongly nonlinear in T),
-/// maximum 1; the gain ratio rho = actual / predicted decrease of |e|^2 accepts a step
-/// (rho > kAcceptRatio), widens (> kGoodRatio) or shrinks (< kPoorRatio) the radius.
-constexpr double kTrustStart = 0.1;
-constexpr double kTrustMax = 1.0;
-constexpr double kTrustShrink = 0.25;
-constexpr double kAcceptRatio = 1e-4;
-constexpr double kGoodRatio = 0.75;
-constexpr double kPoorRatio = 0.25;
-constexpr int kTrustTrials = 30;
 /// Bracketed root finding on temperature (grasp cross-check): stop when the bracket is
 /// below this [K] (well under the 0.01 degC agreement the validation asks for).
 constexpr double kRootTolerance_K = 1e-8;
 /// A closed TCA is moved this far above its coil-opening temperature [K] (see
 /// opening_temperature): well above the onset's root tolerance, and a negligible actuation.
 constexpr double kOpeningMargin_K = 1e-6;
+
+}  // namespace
+
+namespace inverse_internal {
 
 bool is_tca(const rod::RodModel& m, int i) {
   return m.actuators[i].drive.type == rod::Drive::Type::kTca;
@@ -142,7 +120,9 @@ double variable_scale(const rod::RodModel& m, int i, double v, double Fc) {
   return is_tca(m, i) ? std::max(std::abs(v), kTypicalTemperature_K) : std::max(std::abs(v), Fc);
 }
 
-}  // namespace
+}  // namespace inverse_internal
+
+using namespace inverse_internal;
 
 const char* to_string(InverseResult::Status s) {
   switch (s) {
@@ -152,407 +132,6 @@ const char* to_string(InverseResult::Status s) {
     case InverseResult::Status::kForwardFailed: return "forward_failed";
   }
   return "unknown";
-}
-
-bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
-                     const Actuation& actuation, const Solution& solution,
-                     const std::vector<int>& variables, TipDerivativeMethod method,
-                     TipDerivatives& out) {
-  require(!model.tip_constraint, "model.tip_constraint", "(set)",
-          "must be absent: J and C describe a free tip");
-  const int nx = solver.unknown_count();
-  const int nq = static_cast<int>(variables.size());
-  const double Fc = solver.characteristic_force_N();
-  const double L = model.length_m;
-  require(solution.unknowns.size() == nx, "solution.unknowns", static_cast<double>(solution.unknowns.size()),
-          "must hold the solver's " + std::to_string(nx) + " unknowns");
-  for (int i : variables) {
-    require(i >= 0 && i < static_cast<int>(model.actuators.size()), "variables", i,
-            "must index a model actuator");
-  }
-  const Eigen::VectorXd& x = solution.unknowns;
-  out.ivp_count = 0;
-  Eigen::MatrixXd Bu(nx, nx), Eu(6, nx), Bq(nx, nq), Eq(6, nq), BW(nx, 6), EW(6, 6);
-  Eigen::VectorXd r0, y0, rp, rm, yp, ym;
-
-  if (method == TipDerivativeMethod::kSensitivity) {
-    Eigen::MatrixXd dy;
-    ++out.ivp_count;
-    if (!solver.tip_sensitivities(actuation, x, r0, Bu, y0, dy)) return false;
-    const Mat3 R0 = rotation_of(y0);
-    for (int j = 0; j < nx; ++j) {
-      Eu.block<3, 1>(0, j) = dy.block<3, 1>(kP, j);
-      const Eigen::Map<const Mat3> dR(dy.col(j).data() + kR);
-      Eu.block<3, 1>(3, j) = skew_vee(dR * R0.transpose());
-    }
-    // Temperatures enter only the TCA residual r_k = phi(T_k, delta_k, temps) / F_c.
-    Eq.setZero();
-    Bq.setZero();
-    for (int k = 0; k < nq; ++k) {
-      const int i = variables[k];
-      if (is_tca(model, i)) {
-        const int u = unknown_index(model, i);
-        Bq(u, k) = tca_dphi_dT(model, actuation, i, x[u], y0[kDelta + i]) / Fc;
-        continue;
-      }
-      // A tension drive enters the IVP: central differences (two IVPs).
-      Actuation a = actuation;
-      const double v = get_variable(model, actuation, i);
-      const double h = kCentralStep * variable_scale(model, i, v, Fc);
-      set_variable(model, a, i, v + h);
-      out.ivp_count += 2;
-      if (!solver.residual_and_tip_state(a, x, rp, yp)) return false;
-      set_variable(model, a, i, v - h);
-      if (!solver.residual_and_tip_state(a, x, rm, ym)) return false;
-      Bq.col(k) = (rp - rm) / (2.0 * h);
-      Eq.col(k) = pose_difference(yp, ym, R0) / (2.0 * h);
-    }
-    // The tip wrench enters only the tip conditions: dr_n/dF_e = -R^T/F_c,
-    // dr_m/dM_e = -R^T/(F_c L).
-    BW.setZero();
-    EW.setZero();
-    BW.block<3, 3>(0, 0) = -R0.transpose() / Fc;
-    BW.block<3, 3>(3, 3) = -R0.transpose() / (Fc * L);
-  } else {
-    const bool central = method == TipDerivativeMethod::kCentralDifference;
-    const double step = central ? kCentralStep : kForwardStep;
-    ++out.ivp_count;
-    if (!solver.residual_and_tip_state(actuation, x, r0, y0)) return false;
-    const Mat3 R0 = rotation_of(y0);
-    // One perturbed evaluation pair: (eval(+h) - eval(-h)) / 2h or (eval(+h) - base) / h.
-    // `backward`: the variable sits within h of its upper limit (a TCA at its material's
-    // maximum temperature): one-sided differences toward -h instead, second order
-    // (3 f(0) - 4 f(-h) + f(-2h)) / 2h when central.
-    auto column = [&](auto&& eval, double h, Eigen::Ref<Eigen::VectorXd> B,
-                      Eigen::Ref<Eigen::VectorXd> E, bool backward = false) {
-      if (backward) {
-        out.ivp_count += central ? 2 : 1;
-        if (!eval(-h, rm, ym)) return false;
-        if (!central) {
-          B = (r0 - rm) / h;
-          E = pose_difference(y0, ym, R0) / h;
-          return true;
-        }
-        if (!eval(-2.0 * h, rp, yp)) return false;
-        B = (3.0 * r0 - 4.0 * rm + rp) / (2.0 * h);
-        E = (-4.0 * pose_difference(ym, y0, R0) + pose_difference(yp, y0, R0)) / (2.0 * h);
-        return true;
-      }
-      ++out.ivp_count;
-      if (!eval(+h, rp, yp)) return false;
-      if (central) {
-        ++out.ivp_count;
-        if (!eval(-h, rm, ym)) return false;
-        B = (rp - rm) / (2.0 * h);
-        E = pose_difference(yp, ym, R0) / (2.0 * h);
-      } else {
-        B = (rp - r0) / h;
-        E = pose_difference(yp, y0, R0) / h;
-      }
-      return true;
-    };
-    // E_u, B_u: perturbed initial unknowns (typical scales as in the shooting solver: the
-    // strain deviations nu(0) - nu* of F_c, curvatures 1/L, tensions F_c).
-    const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
-    Eigen::VectorXd xp = x;
-    for (int j = 0; j < nx; ++j) {
-      const double typ = j < 3 ? Fc / K_nu[j] : (j < 6 ? 1.0 / L : Fc);
-      const double h = step * std::max(std::abs(x[j]), typ);
-      auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
-        xp[j] = x[j] + hh;
-        const bool ok = solver.residual_and_tip_state(actuation, xp, r, y);
-        xp[j] = x[j];
-        return ok;
-      };
-      if (!column(eval, h, Bu.col(j), Eu.col(j))) return false;
-    }
-    // E_q, B_q: perturbed actuation.
-    for (int k = 0; k < nq; ++k) {
-      const int i = variables[k];
-      const double v = get_variable(model, actuation, i);
-      const double h = step * variable_scale(model, i, v, Fc);
-      Actuation a = actuation;
-      auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
-        set_variable(model, a, i, v + hh);
-        return solver.residual_and_tip_state(a, x, r, y);
-      };
-      const double v_max = is_tca(model, i)
-                               ? model.actuators[i].drive.tca->material().max_temperature_K
-                               : std::numeric_limits<double>::infinity();
-      if (!column(eval, h, Bq.col(k), Eq.col(k), v + h > v_max)) return false;
-    }
-    // E_W, B_W: perturbed tip wrench.
-    for (int c = 0; c < 6; ++c) {
-      Actuation a = actuation;
-      const double w0 = c < 3 ? actuation.tip_force_W_N[c] : actuation.tip_moment_W_Nm[c - 3];
-      const double h = step * std::max(std::abs(w0), c < 3 ? Fc : Fc * L);
-      auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
-        if (c < 3) a.tip_force_W_N[c] = w0 + hh; else a.tip_moment_W_Nm[c - 3] = w0 + hh;
-        return solver.residual_and_tip_state(a, x, r, y);
-      };
-      if (!column(eval, h, BW.col(c), EW.col(c))) return false;
-    }
-  }
-  // [Pawlowski2019] Eqs. (41)-(42): J = E_q - E_u B_u^-1 B_q, C = E_W - E_u B_u^-1 B_W.
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Bu);
-  const Eigen::MatrixXd du_dq = -lu.solve(Bq);
-  const Eigen::MatrixXd du_dW = -lu.solve(BW);
-  out.J = Eq + Eu * du_dq;
-  out.C = EW + Eu * du_dW;
-  out.du_dq = du_dq;
-  out.B_u = std::move(Bu);
-  out.tip_state = y0;
-  return out.J.allFinite() && out.C.allFinite();
-}
-
-void actuation_bounds(const rod::RodModel& model, const std::vector<int>& variables,
-                      double max_temperature_K, double max_tension_N, Eigen::VectorXd& lower,
-                      Eigen::VectorXd& upper) {
-  const int nq = static_cast<int>(variables.size());
-  lower.resize(nq);
-  upper.resize(nq);
-  for (int k = 0; k < nq; ++k) {
-    const int i = variables[k];
-    if (is_tca(model, i)) {
-      const tca::Material& mat = model.actuators[i].drive.tca->material();
-      lower[k] = mat.reference_temperature_K;
-      upper[k] = std::isnan(max_temperature_K) ? mat.max_temperature_K
-                                                : std::min(mat.max_temperature_K, max_temperature_K);
-      require(upper[k] > lower[k], "max_temperature_degC", units::K_to_degC(upper[k]),
-              "must be above the ambient (reference) temperature " +
-                  format_value(units::K_to_degC(lower[k])) + " degC of actuator '" +
-                  model.actuators[i].name + "'");
-    } else {
-      lower[k] = 0.0;
-      upper[k] = max_tension_N;
-      require(upper[k] > 0.0, "max_tension_N", max_tension_N, "must be > 0");
-    }
-  }
-}
-
-namespace {
-
-/// Least-squares step of min |A dq - e|^2 + mu |D dq|^2 with lo <= q + dq <= hi: variables
-/// whose step leaves the box are fixed at the violated bound and the rest re-solved
-/// (minimum-norm for a redundant A).
-Eigen::VectorXd bounded_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& e, double mu,
-                             const Eigen::VectorXd& D, const Eigen::VectorXd& q,
-                             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
-  const int m = static_cast<int>(q.size());
-  Eigen::VectorXd dq = Eigen::VectorXd::Zero(m);
-  std::vector<bool> fixed(m, false);
-  for (int pass = 0; pass <= m; ++pass) {
-    std::vector<int> free_idx;
-    Eigen::VectorXd ef = e;
-    for (int i = 0; i < m; ++i) {
-      if (fixed[i]) ef -= A.col(i) * dq[i]; else free_idx.push_back(i);
-    }
-    if (free_idx.empty()) break;
-    const int nf = static_cast<int>(free_idx.size());
-    Eigen::MatrixXd Af(A.rows() + nf, nf);
-    Af.setZero();
-    for (int c = 0; c < nf; ++c) {
-      Af.block(0, c, A.rows(), 1) = A.col(free_idx[c]);
-      Af(A.rows() + c, c) = std::sqrt(mu) * D[free_idx[c]];
-    }
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(A.rows() + nf);
-    rhs.head(A.rows()) = ef;
-    const Eigen::VectorXd s = Af.completeOrthogonalDecomposition().solve(rhs);
-    bool violated = false;
-    for (int c = 0; c < nf; ++c) {
-      const int i = free_idx[c];
-      dq[i] = s[c];
-      if (q[i] + dq[i] > hi[i]) { dq[i] = hi[i] - q[i]; fixed[i] = true; violated = true; }
-      if (q[i] + dq[i] < lo[i]) { dq[i] = lo[i] - q[i]; fixed[i] = true; violated = true; }
-    }
-    if (!violated) break;
-  }
-  return dq;
-}
-
-}  // namespace
-
-InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
-                            const Eigen::Vector3d& target_W_m, const InverseOptions& options,
-                            Actuation& actuation, Solution& solution) {
-  require(target_W_m.allFinite(), "target", target_W_m.norm(), "must be finite");
-  require(options.tolerance_m > 0.0, "options.tolerance_m", options.tolerance_m, "must be > 0");
-  require(options.max_iterations >= 1, "options.max_iterations", options.max_iterations,
-          "must be >= 1");
-  const bool any_component = options.components[0] || options.components[1] || options.components[2];
-  require(any_component || options.target_R_WB.has_value(), "options.components", 0.0,
-          "must select at least one tip position component (or give an orientation target)");
-  InverseResult res;
-  res.actuators = options.actuators;
-  if (res.actuators.empty()) {
-    for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) res.actuators.push_back(i);
-  }
-  require(!res.actuators.empty(), "actuators", 0.0, "the model has no actuator to adjust");
-  for (int i : res.actuators) {
-    require(i >= 0 && i < static_cast<int>(model.actuators.size()), "options.actuators", i,
-            "must index a model actuator");
-    require_uniform_temperature(model, i);
-  }
-  const std::vector<int>& vars = res.actuators;
-  const int nq = static_cast<int>(vars.size());
-  Eigen::VectorXd lo, hi;
-  actuation_bounds(model, vars, options.max_temperature_K, options.max_tension_N, lo, hi);
-  Eigen::VectorXd q(nq);
-  for (int k = 0; k < nq; ++k) {
-    q[k] = std::clamp(get_variable(model, actuation, vars[k]), lo[k], hi[k]);
-    set_variable(model, actuation, vars[k], q[k]);
-  }
-  const double L = model.length_m;
-  std::vector<int> rows;
-  for (int c = 0; c < 3; ++c) {
-    if (options.components[c]) rows.push_back(c);
-  }
-  if (options.target_R_WB) {
-    for (int c = 3; c < 6; ++c) rows.push_back(c);
-  }
-  const int ne = static_cast<int>(rows.size());
-  // Targeted error e (position rows [m], orientation rows x L [m]) at tip state y.
-  auto error_of = [&](const Eigen::VectorXd& y) {
-    Eigen::VectorXd e(ne);
-    const Vec3 dp = target_W_m - y.segment<3>(kP);
-    Vec3 dth = Vec3::Zero();
-    if (options.target_R_WB) dth = so3::log(Mat3(*options.target_R_WB * rotation_of(y).transpose()));
-    for (int k = 0; k < ne; ++k) e[k] = rows[k] < 3 ? dp[rows[k]] : L * dth[rows[k] - 3];
-    return e;
-  };
-  auto finish = [&](InverseResult::Status st, std::string why, const Eigen::VectorXd& y) {
-    res.status = st;
-    res.message = std::move(why);
-    res.values = q;
-    res.at_bound.assign(nq, false);
-    for (int k = 0; k < nq; ++k) res.at_bound[k] = q[k] <= lo[k] || q[k] >= hi[k];
-    if (y.size() > kDelta) {
-      res.tip_position_W_m = y.segment<3>(kP);
-      res.tip_R_WB = rotation_of(y);
-      Vec3 dp = target_W_m - res.tip_position_W_m;
-      for (int c = 0; c < 3; ++c) {
-        if (!options.components[c]) dp[c] = 0.0;
-      }
-      res.distance_m = dp.norm();
-      if (options.target_R_WB) {
-        res.orientation_error_rad =
-            so3::log(Mat3(*options.target_R_WB * res.tip_R_WB.transpose())).norm();
-      }
-    }
-    return res;
-  };
-
-  ++res.forward_solves;
-  Summary s = solver.solve(actuation, solution);
-  if (!s.converged()) {
-    return finish(InverseResult::Status::kForwardFailed,
-                  std::string("forward solve at the starting actuation failed: ") + s.message,
-                  Eigen::VectorXd());
-  }
-  double radius = kTrustStart;
-  TipDerivatives d;
-  // A TCA with closed coils has no temperature sensitivity (a zero column of J) until its
-  // coils open, and every temperature up to that onset gives the same state: such a TCA is
-  // moved to its opening temperature, which is also its lower bound for this step.
-  Eigen::VectorXd lo_step = lo;
-  for (int it = 0;; ++it) {
-    lo_step = lo;
-    bool moved = false;
-    for (int k = 0; k < nq; ++k) {
-      const std::optional<double> t_open = opening_temperature(model, actuation, vars[k], solution, hi[k]);
-      if (!t_open) continue;
-      q[k] = std::max(q[k], *t_open);
-      lo_step[k] = q[k];
-      set_variable(model, actuation, vars[k], q[k]);
-      moved = true;
-    }
-    if (moved) {
-      ++res.forward_solves;
-      s = solver.solve(actuation, solution);
-      if (!s.converged()) {
-        return finish(InverseResult::Status::kForwardFailed,
-                      std::string("forward solve at the coil-opening temperature failed: ") + s.message,
-                      solution.tip_state);
-      }
-    }
-    if (!tip_derivatives(solver, model, actuation, solution, vars, options.method, d)) {
-      return finish(InverseResult::Status::kForwardFailed, "tip Jacobian evaluation failed",
-                    solution.tip_state);
-    }
-    const Eigen::VectorXd& y = d.tip_state;
-    const Eigen::VectorXd e = error_of(y);
-    const double err = e.norm();
-    if (e.lpNorm<Eigen::Infinity>() <= options.tolerance_m && err <= options.tolerance_m) {
-      return finish(InverseResult::Status::kConverged, "", y);
-    }
-    Eigen::MatrixXd A(ne, nq);
-    for (int k = 0; k < ne; ++k) {
-      A.row(k) = rows[k] < 3 ? d.J.row(rows[k]) : Eigen::RowVectorXd(L * d.J.row(rows[k]));
-    }
-    // Projected gradient of |e|^2/2 (descent direction A^T e): a variable at a bound whose
-    // descent direction points out of the box is held.
-    Eigen::VectorXd g = A.transpose() * e;
-    for (int k = 0; k < nq; ++k) {
-      if ((q[k] >= hi[k] && g[k] > 0.0) || (q[k] <= lo_step[k] && g[k] < 0.0)) g[k] = 0.0;
-    }
-    if (g.norm() <= kStationarity * A.norm() * err) {
-      return finish(InverseResult::Status::kUnreachable,
-                    "target not reachable within the actuation bounds: least-squares distance " +
-                        format_value(err) + " m",
-                    y);
-    }
-    if (it >= options.max_iterations) {
-      return finish(InverseResult::Status::kMaxIterations,
-                    "reached max_iterations = " + std::to_string(options.max_iterations) +
-                        " with distance " + format_value(err) + " m",
-                    y);
-    }
-    Eigen::VectorXd D(nq), scale(nq);
-    for (int k = 0; k < nq; ++k) {
-      D[k] = std::max(A.col(k).norm(), 1e-300);
-      scale[k] = variable_scale(model, vars[k], q[k], solver.characteristic_force_N());
-    }
-    bool accepted = false;
-    for (int trial = 0; trial < kTrustTrials && !accepted; ++trial) {
-      // [Pawlowski2019] Eq. (40) with dW = 0: e = J dq, solved in the bounded (minimum-norm)
-      // least-squares sense, then shortened to the trust radius.
-      Eigen::VectorXd dq = bounded_step(A, e, 0.0, D, q, lo_step, hi);
-      const double size = (dq.array().abs() / scale.array()).maxCoeff();
-      if (size <= kNilStep) break;
-      const bool truncated = size > radius;
-      if (truncated) dq *= radius / size;  // stays in the box (q and q + dq are inside)
-      Actuation at = actuation;
-      for (int k = 0; k < nq; ++k) set_variable(model, at, vars[k], q[k] + dq[k]);
-      Solution st = solution;
-      // First-order warm start du = -B_u^-1 B_q dq (the coarse level restarts).
-      st.unknowns += d.du_dq * dq;
-      st.coarse_unknowns.resize(0);
-      st.jacobian = d.B_u;  // fresh at the old point: Newton starts without recomputing it
-      st.path.clear();      // this first-order start, not an extrapolation along past trials
-      ++res.forward_solves;
-      const Summary ss = solver.solve(at, st);
-      const double predicted = err * err - (e - A * dq).squaredNorm();
-      const double err_new = ss.converged() ? error_of(st.tip_state).norm() : err;
-      const double rho = predicted > 0.0 ? (err * err - err_new * err_new) / predicted : -1.0;
-      if (ss.converged() && err_new < err && rho > kAcceptRatio) {
-        accepted = true;
-        actuation = at;
-        solution = std::move(st);
-        q += dq;
-        if (rho > kGoodRatio && truncated) radius = std::min(2.0 * radius, kTrustMax);
-        if (rho < kPoorRatio) radius *= kTrustShrink;
-      } else {
-        radius = (dq.array().abs() / scale.array()).maxCoeff() * kTrustShrink;
-      }
-    }
-    if (!accepted) {
-      return finish(InverseResult::Status::kUnreachable,
-                    "no step inside the actuation bounds reduces the distance " +
-                        format_value(err) + " m (least-squares optimum)",
-                    y);
-    }
-    ++res.iterations;
-  }
 }
 
 double blocked_normal_force_N(ShootingSolver& constrained_solver, const rod::RodModel& model,
@@ -697,47 +276,30 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
   if (bsol.tip_state.size() > 0) res.tip_position_W_m = bsol.tip_state.segment<3>(kP);
 
   if (options.cross_check && converged) {
-    // Bracketed root of g(T) = F_blocked(T) - F_req on [t_lo, t_hi] (Illinois regula falsi).
+    // Bracketed root of g(T) = F_blocked(T) - F_req on [t_lo, t_hi] (Brent's method).
     Solution rsol;
     auto g = [&](double t) {
       ++res.root_evaluations;
       return blocked_normal_force_N(cs, model, t, rsol) - F_req;
     };
-    double a0 = t_lo, b0 = t_hi, ga = g(a0), gb = g(b0);
+    const double ga = g(t_lo), gb = g(t_hi);
     if (!std::isfinite(ga) || !std::isfinite(gb)) {
       why = "blocked-tip solve failed at a bracket end";
       converged = false;
-    } else if ((ga > 0.0) == (gb > 0.0)) {
+    } else if ((ga > 0.0) == (gb > 0.0) && ga != 0.0 && gb != 0.0) {
       why = "the blocked-tip force minus the required force does not change sign on [" +
             format_value(units::K_to_degC(t_lo)) + ", " + format_value(units::K_to_degC(t_hi)) +
             "] degC";
       converged = false;
     } else {
-      int side = 0;
-      for (int k = 0; k < 200 && b0 - a0 > kRootTolerance_K; ++k) {
-        double c = (a0 * gb - b0 * ga) / (gb - ga);
-        if (!(c > a0 && c < b0)) c = 0.5 * (a0 + b0);
-        const double gc = g(c);
-        if (!std::isfinite(gc)) { converged = false; why = "blocked-tip solve failed"; break; }
-        if (gc == 0.0) { a0 = b0 = c; break; }
-        if ((gc > 0.0) == (gb > 0.0)) {
-          b0 = c; gb = gc;
-          if (side == -1) ga *= 0.5;  // Illinois: halve the stale end's value
-          side = -1;
-        } else {
-          a0 = c; ga = gc;
-          if (side == +1) gb *= 0.5;
-          side = +1;
-        }
-        // Secant steps may hug one end: bisect when the bracket stops shrinking fast.
-        if (k % 4 == 3) {
-          const double mid = 0.5 * (a0 + b0), gm = g(mid);
-          if (!std::isfinite(gm)) { converged = false; why = "blocked-tip solve failed"; break; }
-          if ((gm > 0.0) == (gb > 0.0)) { b0 = mid; gb = gm; } else { a0 = mid; ga = gm; }
-          side = 0;
-        }
+      // A bracket shorter than 2 * (kRootTolerance_K / 2): the root to kRootTolerance_K.
+      const auto root = roots::brent(g, t_lo, t_hi, ga, gb, 0.5 * kRootTolerance_K);
+      if (root) {
+        res.root_temperature_K = root->x;
+      } else {
+        converged = false;
+        why = "blocked-tip solve failed";
       }
-      res.root_temperature_K = 0.5 * (a0 + b0);
     }
   }
   res.converged = converged;

@@ -3,20 +3,16 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "common/lie_series.hpp"
 
 namespace tcasim::cosserat {
 
 namespace {
 
+using so3::hat;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-inline Mat3 hat(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 /// Lie bracket of se(3) in (rho, phi) coordinates, the matrix commutator of the 4x4 hats:
 /// [(rho1, phi1), (rho2, phi2)] = (phi1 x rho2 - phi2 x rho1, phi1 x phi2).
@@ -31,30 +27,16 @@ inline Vec6 bracket(const Vec6& X, const Vec6& Y) {
 }  // namespace
 
 Se3Exp::Se3Exp(const Vec3& rho, const Vec3& phi) : rho_(rho), phi_(phi) {
-  const double x = phi.squaredNorm();
-  if (x < kSe3SeriesThreshold * kSe3SeriesThreshold) {
-    // Taylor series in x = t^2: a = sum (-x)^k/(2k+1)!, b = sum (-x)^k/(2k+2)!,
-    // c = sum (-x)^k/(2k+3)!, truncated after x^4 (and their term-wise derivatives).
-    a_ = 1.0 + x * (-1.0 / 6.0 + x * (1.0 / 120.0 + x * (-1.0 / 5040.0 + x / 362880.0)));
-    b_ = 0.5 + x * (-1.0 / 24.0 + x * (1.0 / 720.0 + x * (-1.0 / 40320.0 + x / 3628800.0)));
-    c_ = 1.0 / 6.0 + x * (-1.0 / 120.0 + x * (1.0 / 5040.0 + x * (-1.0 / 362880.0 + x / 39916800.0)));
-    da_ = -1.0 / 6.0 + x * (2.0 / 120.0 + x * (-3.0 / 5040.0 + x * (4.0 / 362880.0 - 5.0 * x / 39916800.0)));
-    db_ = -1.0 / 24.0 + x * (2.0 / 720.0 + x * (-3.0 / 40320.0 + x * (4.0 / 3628800.0 - 5.0 * x / 479001600.0)));
-    dc_ = -1.0 / 120.0 +
-          x * (2.0 / 5040.0 + x * (-3.0 / 362880.0 + x * (4.0 / 39916800.0 - 5.0 * x / 6227020800.0)));
-  } else {
-    const double t = std::sqrt(x);
-    const double s = std::sin(t), co = std::cos(t);
-    const double hs = std::sin(0.5 * t);
-    const double omc = 2.0 * hs * hs;  // 1 - cos t without cancellation
-    a_ = s / t;
-    b_ = omc / x;
-    c_ = (t - s) / (x * t);
-    // d/dx = (1 / (2 t)) d/dt.
-    da_ = (t * co - s) / (2.0 * x * t);
-    db_ = (t * s - 2.0 * omc) / (2.0 * x * x);
-    dc_ = (t * omc - 3.0 * (t - s)) / (2.0 * x * x * t);
-  }
+  // a, b, c of x = |phi|^2 and their x-derivatives, from one dual direction seeded on x.
+  ad::Dual<double, 1> x(phi.squaredNorm());
+  x.d[0] = 1.0;
+  const so3::Coefficients<ad::Dual<double, 1>> k = so3::coefficients(x);
+  a_ = k.a.v;
+  b_ = k.b.v;
+  c_ = k.c.v;
+  da_ = k.a.d[0];
+  db_ = k.b.d[0];
+  dc_ = k.c.d[0];
   K_ = hat(phi);
   K2_ = K_ * K_;
   E_ = Mat3::Identity() + a_ * K_ + b_ * K2_;

@@ -27,15 +27,10 @@ namespace tcasim::cosserat {
 /// coefficients are functions of x = |phi|^2 (smooth at phi = 0):
 ///   a = sin(t)/t, b = (1 - cos t)/t^2, c = (t - sin t)/t^3,  t = sqrt(x),
 ///   E = I + a hat(phi) + b hat(phi)^2,   Jl = I + b hat(phi) + c hat(phi)^2,
-/// and below kSe3SeriesThreshold their Taylor series in x (and those of da/dx, db/dx,
-/// dc/dx) replace the closed forms.
+/// from common/lie_series.hpp (Taylor series in x below its kSeriesBelowAngleSquared), their
+/// x-derivatives by one dual direction.
 class Se3Exp {
  public:
-  /// Rotation angle [rad] below which the series are used: the first dropped term is
-  /// O(x^5)/13! <= 1e-20 there, while the closed-form derivatives lose ~eps/t^2 <= 2e-14
-  /// relative above it.
-  static constexpr double kSe3SeriesThreshold = 0.1;
-
   Se3Exp(const Eigen::Vector3d& rho, const Eigen::Vector3d& phi);
   /// Exp(phi).
   const Eigen::Matrix3d& rotation() const { return E_; }

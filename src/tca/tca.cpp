@@ -1,5 +1,5 @@
 // The TCA model of [Pawlowski2019] Section II with the decisions of
-// docs/conventions.md and physics-notes section 1 (see tca.hpp).
+// docs/conventions.md "TCA model ([Pawlowski2019] Section II)" (see tca.hpp).
 #include "tca/tca.hpp"
 
 #include <fmt/format.h>
@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "common/root_finding.hpp"
 #include "common/units.hpp"
-#include "tca/root_finding.hpp"
 
 namespace tcasim::tca {
 namespace {
@@ -248,13 +248,13 @@ ElongationState Tca::free_coil_elongation(double tension_N, double t_K) const {
   };
   const double delta_lo = -l * x0, delta_hi = l * (1.0 - x0);  // sin(alpha) = 0 and 1
   const double h0 = h(0.0);
-  std::optional<detail::RootResult> root;
+  std::optional<roots::RootResult> root;
   if (h0 == 0.0) {
-    root = detail::RootResult{0.0, 0};
+    root = roots::RootResult{0.0, 0};
   } else if (h0 < 0.0) {  // the coils open: the root nearest the closed state lies above
-    root = detail::first_root(h, 0.0, delta_hi, kScanIntervals, kElongationTol_m);
+    root = roots::first_root(h, 0.0, delta_hi, kScanIntervals, kElongationTol_m);
   } else {
-    root = detail::first_root(h, 0.0, delta_lo, kScanIntervals, kElongationTol_m);
+    root = roots::first_root(h, 0.0, delta_lo, kScanIntervals, kElongationTol_m);
   }
   if (!root) {
     throw DomainError(fmt::format(
@@ -272,7 +272,7 @@ ElongationState Tca::free_coil_elongation(double tension_N, double t_K) const {
 
 ElongationState Tca::elongation(double tension_N, double t_K) const {
   ElongationState out = free_coil_elongation(tension_N, t_K);
-  // Closed coils (physics-notes 1): an extension TCA cannot shorten below L.
+  // Closed coils (docs/conventions.md "Closed coils"): an extension TCA cannot shorten below L.
   if (p_.kind == Kind::kExtension && out.elongation_m < 0.0) {
     out.elongation_m = 0.0;
     out.pitch_angle_rad = alpha0_;
@@ -284,7 +284,7 @@ ElongationState Tca::elongation(double tension_N, double t_K) const {
 double Tca::temperature_for_tension(double tension_N, double elongation_m, double t_lo_K,
                                     double t_hi_K) const {
   const auto q = [&](double t_K) { return tension(elongation_m, t_K).tension_N - tension_N; };
-  const auto root = detail::first_root(q, t_lo_K, t_hi_K, kScanIntervals, kTemperatureTol_K);
+  const auto root = roots::first_root(q, t_lo_K, t_hi_K, kScanIntervals, kTemperatureTol_K);
   if (!root) {
     throw DomainError(fmt::format(
         "TCA: no temperature in [{} degC, {} degC] gives tension {} N at elongation {} m "
@@ -307,7 +307,7 @@ std::optional<double> Tca::onset_temperature(double tension_N, double t_lo_K,
   if (q(t_lo_K) < 0.0) return t_lo_K;
   // One grid cell per kelvin at least: the onset is the first crossing, not any crossing.
   const int intervals = std::max(kScanIntervals, static_cast<int>(std::ceil(t_hi_K - t_lo_K)));
-  const auto root = detail::first_root(q, t_lo_K, t_hi_K, intervals, kTemperatureTol_K);
+  const auto root = roots::first_root(q, t_lo_K, t_hi_K, intervals, kTemperatureTol_K);
   if (!root) return std::nullopt;
   return root->x;
 }
@@ -361,7 +361,7 @@ SeriesTensionState series_tension(const Tca& tca, double elongation_m,
   if (f_hi > f_lo) {
     // Absolute tolerance on F [N]: relative round-off level of the bracket's scale.
     const double tol = 1e-15 * std::max(std::abs(f_lo), std::abs(f_hi));
-    const auto root = detail::brent(residual, f_lo, f_hi, residual(f_lo), residual(f_hi), tol);
+    const auto root = roots::brent(residual, f_lo, f_hi, residual(f_lo), residual(f_hi), tol);
     if (!root) {
       throw DomainError(fmt::format(
           "TCA series: no shared tension in [{} N, {} N] gives total elongation {} m (free-coil "

@@ -2,11 +2,13 @@
 // dual-number rotation formulas against src/common/so3.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
 #include "beam_fe/beam_fe.hpp"
-#include "beam_fe/dual.hpp"
+#include "common/dual.hpp"
+#include "common/lie_series.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
 #include "models.hpp"
@@ -179,19 +181,36 @@ TEST(BeamFeAssembly, BorderedTangentWithPinnedOrNormalTipConstraintMatchesFinite
   }
 }
 
+/// alpha I + beta K + gamma K^2 (K = hat(phi), row-major 3x3) over dual scalars, from the
+/// shared coefficients: the rotation formulas whose derivatives the element kernel uses.
+template <class S>
+using Row3x3 = std::array<S, 9>;
+template <class S>
+Row3x3<S> combine(const S& alpha, const S& beta, const S& gamma, const std::array<S, 3>& phi) {
+  const S K[9] = {S(0.0), -phi[2], phi[1], phi[2], S(0.0), -phi[0], -phi[1], phi[0], S(0.0)};
+  Row3x3<S> r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      r[3 * i + j] = beta * K[3 * i + j] +
+                     gamma * (K[3 * i] * K[j] + K[3 * i + 1] * K[3 + j] + K[3 * i + 2] * K[6 + j]) +
+                     (i == j ? alpha : S(0.0));
+  return r;
+}
+
 TEST(BeamFeDual, RotationFormulasMatchSo3AndTheirDerivativesMatchFiniteDifferences) {
   using D3 = ad::Dual<double, 3>;
   for (const double angle : {0.0, 1e-6, 0.05, 0.0999, 0.1001, 1.0, 3.0}) {
     SCOPED_TRACE("angle " + std::to_string(angle));
     const Vector3d phi = angle * Vector3d(0.3, -0.5, 0.8).normalized();
-    ad::V3<D3> p;
+    std::array<D3, 3> p;
     for (int k = 0; k < 3; ++k) {
       p[k] = D3(phi[k]);
       p[k].d[k] = 1.0;
     }
-    const auto E = ad::exp_matrix(p);
-    const auto J = ad::right_jacobian(p);
-    const auto Ji = ad::right_jacobian_inverse(p);
+    const so3::Coefficients<D3> c = so3::coefficients(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const auto E = combine(D3(1.0), c.a, c.b, p);     // Exp = I + a K + b K^2
+    const auto J = combine(D3(1.0), -c.b, c.c, p);    // Jr = I - b K + c K^2
+    const auto Ji = combine(D3(1.0), D3(0.5), c.d, p);  // Jr^-1 = I + K/2 + d K^2
     const Eigen::Matrix3d E0 = so3::exp(phi), J0 = so3::right_jacobian(phi), Ji0 = so3::right_jacobian_inverse(phi);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {

@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
+#include "rod/closed_form.hpp"
 #include "models.hpp"
 #include "support/convergence.hpp"
 
@@ -37,27 +38,14 @@ rod::RodModel straight_strings_rod() {
   return m;
 }
 
-/// conventions.md closed form: constant strains from the tensions.
+/// docs/conventions.md "Closed form": constant strains and elongations from the tensions.
 void closed_form(const rod::RodModel& m, Vector3d& nu, Vector3d& omega, std::vector<double>& delta) {
-  const Vector3d Kn = m.shear_extension_stiffness(), Ko = m.bending_torsion_stiffness();
-  nu = Vector3d::UnitZ();
-  omega = m.reference_curvature_B_1_m;
-  for (const rod::Actuator& a : m.actuators) {
-    const double cT = a.count * a.drive.tension_N;
-    nu.z() -= cT / Kn.z();
-    omega.x() -= cT * a.routing.offset_m.y() / Ko.x();
-    omega.y() += cT * a.routing.offset_m.x() / Ko.y();
-  }
-  delta.clear();
-  for (const rod::Actuator& ai : m.actuators) {
-    double d = 0.0;
-    for (const rod::Actuator& aj : m.actuators) {
-      const double C = 1.0 / Kn.z() + ai.routing.offset_m.y() * aj.routing.offset_m.y() / Ko.x() +
-                       ai.routing.offset_m.x() * aj.routing.offset_m.x() / Ko.y();
-      d -= m.length_m * C * aj.count * aj.drive.tension_N;
-    }
-    delta.push_back(d);
-  }
+  std::vector<double> cT;
+  for (const rod::Actuator& a : m.actuators) cT.push_back(a.count * a.drive.tension_N);
+  const rod::ConstantStrains cf = rod::closed_form_strains(m, cT);
+  nu = Vector3d::UnitZ() + cf.e;
+  omega = cf.omega;
+  delta = rod::closed_form_elongations_m(m, cT);
 }
 
 TEST(BeamFeSolver, StraightStringsGiveExactTensionsElongationsAndNodalRotationsOnAnyMesh) {

@@ -28,12 +28,13 @@ constexpr double kNearPiRoundTripTol = 1e-13;
 constexpr double kFdStep = 1e-5;
 constexpr double kFdJacobianTol = 1e-9;
 
-// Angles near 0 on both sides of the Taylor threshold (1e-4), near pi, and generic.
+// Angles near 0 on both sides of the quaternion maps' Taylor threshold (1e-4) and of the
+// coefficients' series threshold (0.1 rad), near pi, and generic.
 std::vector<Vector3d> test_points() {
   std::vector<Vector3d> points;
   const Vector3d axis = Vector3d(0.3, -0.5, 0.8).normalized();
   for (double angle : {0.0, 1e-9, 1e-5, kSmallAngleThreshold * (1.0 - 1e-9),
-                       kSmallAngleThreshold * (1.0 + 1e-9), 1e-3, 0.5, 2.0, kPi - 1e-4,
+                       kSmallAngleThreshold * (1.0 + 1e-9), 1e-3, 0.0999, 0.1001, 0.5, 2.0, kPi - 1e-4,
                        kPi - 1e-8})
     points.push_back(angle * axis);
   // Coordinate axes near pi exercise every pivot of the matrix-to-quaternion step.
@@ -180,22 +181,29 @@ TEST(So3, LeftJacobianIsRightJacobianOfNegatedVectorAndRotatedRightJacobian) {
   }
 }
 
-TEST(So3, JacobiansAreContinuousAcrossTheSmallAngleThreshold) {
+TEST(So3, JacobiansAreContinuousAcrossTheSmallAngleThresholds) {
   const Vector3d axis = Vector3d(1.0, -1.0, 0.5).normalized();
-  const Vector3d below = kSmallAngleThreshold * (1.0 - 1e-12) * axis;
-  const Vector3d above = kSmallAngleThreshold * (1.0 + 1e-12) * axis;
-  // Both branches agree to round-off at the switch (no jump of O(theta^4)).
-  EXPECT_LE((exp(below) - exp(above)).norm(), kRoundOffTol);
-  EXPECT_LE((right_jacobian(below) - right_jacobian(above)).norm(), kRoundOffTol);
-  EXPECT_LE((right_jacobian_inverse(below) - right_jacobian_inverse(above)).norm(), kRoundOffTol);
-  EXPECT_LE((exp_quaternion(below).coeffs() - exp_quaternion(above).coeffs()).norm(), kRoundOffTol);
+  // Both branches agree to round-off at each switch (no jump of the first dropped term):
+  // the quaternion maps' at kSmallAngleThreshold, the coefficients' at
+  // sqrt(kSeriesBelowAngleSquared). The two points lie a few ulps apart, so the functions'
+  // own change between them (slope O(1)) stays far below the tolerance.
+  for (const double threshold : {kSmallAngleThreshold, std::sqrt(kSeriesBelowAngleSquared)}) {
+    const Vector3d below = threshold * (1.0 - 1e-15) * axis;
+    const Vector3d above = threshold * (1.0 + 1e-15) * axis;
+    EXPECT_LE((exp(below) - exp(above)).norm(), kRoundOffTol) << threshold;
+    EXPECT_LE((right_jacobian(below) - right_jacobian(above)).norm(), kRoundOffTol) << threshold;
+    EXPECT_LE((right_jacobian_inverse(below) - right_jacobian_inverse(above)).norm(), kRoundOffTol)
+        << threshold;
+    EXPECT_LE((exp_quaternion(below).coeffs() - exp_quaternion(above).coeffs()).norm(), kRoundOffTol)
+        << threshold;
+  }
 }
 
 TEST(So3, SmallAngleJacobiansMatchTheirSeries) {
   // Jr = I - K/2 + K^2/6 - K^3/24 + ..., Jr^-1 = I + K/2 + K^2/12 + O(K^4): the
-  // dropped terms are bounded by t^3 (|K| = t), so the closed form at 1e-3 and the
-  // Taylor branch below 1e-4 must both agree with the series to that level.
-  for (double angle : {1e-9, 1e-5, 1e-3}) {
+  // dropped terms are bounded by t^3 (|K| = t), so the Taylor branch (below 0.1 rad) and
+  // the closed form above it must both agree with the series to that level.
+  for (double angle : {1e-9, 1e-5, 1e-3, 0.2}) {
     const Vector3d phi = angle * Vector3d(0.6, 0.0, -0.8);
     const Matrix3d K = hat(phi);
     const Matrix3d I = Matrix3d::Identity();

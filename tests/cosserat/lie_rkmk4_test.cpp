@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
+#include "rod/closed_form.hpp"
 #include "cosserat/models.hpp"
 #include "support/finite_difference.hpp"
 #include "cosserat/shooting.hpp"
@@ -110,16 +111,11 @@ TEST(LieGroupShooting, ConstantStrainRodIsExactAtAnyStepCount) {
   add_tension_string(m, "b", -0.0020, 0.0025, 0.0015, 2);
   const Actuation act = Actuation::from_model(m);
   // docs/conventions.md "Closed form".
-  const Vector3d Kn = m.shear_extension_stiffness(), Ko = m.bending_torsion_stiffness();
-  double sT = 0, sTx = 0, sTy = 0;
-  for (const rod::Actuator& a : m.actuators) {
-    const double cT = a.count * a.drive.tension_N;
-    sT += cT;
-    sTx += cT * a.routing.offset_m.x();
-    sTy += cT * a.routing.offset_m.y();
-  }
-  const Vector3d nu(0, 0, 1.0 - sT / Kn.z());
-  const Vector3d omega = m.reference_curvature_B_1_m + Vector3d(-sTy / Ko.x(), sTx / Ko.y(), 0.0);
+  std::vector<double> cT;
+  for (const rod::Actuator& a : m.actuators) cT.push_back(a.count * a.drive.tension_N);
+  const rod::ConstantStrains cf = rod::closed_form_strains(m, cT);
+  const Vector3d nu = Vector3d::UnitZ() + cf.e;
+  const Vector3d omega = cf.omega;
   Eigen::Matrix4d X = Eigen::Matrix4d::Zero();
   X.topLeftCorner<3, 3>() = so3::hat(omega);
   X.topRightCorner<3, 1>() = nu;

@@ -11,8 +11,11 @@
 #include <initializer_list>
 #include <vector>
 
+#include "common/lie_series.hpp"
+#include "common/root_finding.hpp"
 #include "common/units.hpp"
 #include "cosserat/models.hpp"
+#include "rod/closed_form.hpp"
 #include "support/finite_difference.hpp"
 #include "support/convergence.hpp"
 
@@ -24,11 +27,7 @@ using Eigen::Vector3d;
 using testing::add_tension_string;
 using units::kPi;
 
-Matrix3d hat(const Vector3d& v) {
-  Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
+using so3::hat;
 
 /// Tip pose of a constant-strain rod: g(L) = exp(L xi^) with xi = (nu, omega), computed
 /// with Eigen's matrix exponential (independent of the solver and of so3).
@@ -88,28 +87,10 @@ struct ClosedForm {
 
 ClosedForm closed_form(const rod::RodModel& m, const std::vector<double>& tensions) {
   // docs/conventions.md "Closed form".
-  const Vector3d Kn = m.shear_extension_stiffness(), Ko = m.bending_torsion_stiffness();
-  double sT = 0, sTx = 0, sTy = 0;
-  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    const double cT = m.actuators[i].count * tensions[i];
-    sT += cT;
-    sTx += cT * m.actuators[i].routing.offset_m.x();
-    sTy += cT * m.actuators[i].routing.offset_m.y();
-  }
-  ClosedForm cf;
-  cf.nu = Vector3d(0, 0, 1.0 - sT / Kn.z());
-  cf.omega = m.reference_curvature_B_1_m + Vector3d(-sTy / Ko.x(), sTx / Ko.y(), 0.0);
-  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    const Eigen::Vector2d ri = m.actuators[i].routing.offset_m;
-    double d = 0;
-    for (std::size_t j = 0; j < m.actuators.size(); ++j) {
-      const Eigen::Vector2d rj = m.actuators[j].routing.offset_m;
-      const double C = 1.0 / Kn.z() + ri.y() * rj.y() / Ko.x() + ri.x() * rj.x() / Ko.y();
-      d -= m.length_m * C * m.actuators[j].count * tensions[j];
-    }
-    cf.delta.push_back(d);
-  }
-  return cf;
+  std::vector<double> cT;
+  for (std::size_t i = 0; i < m.actuators.size(); ++i) cT.push_back(m.actuators[i].count * tensions[i]);
+  const rod::ConstantStrains s = rod::closed_form_strains(m, cT);
+  return {Vector3d::UnitZ() + s.e, s.omega, rod::closed_form_elongations_m(m, cT)};
 }
 
 rod::RodModel soft_rod_with_strings() {
@@ -171,7 +152,8 @@ TEST(ShootingClosedForm, TcaDriveTensionSolvesTheScalarEquationOfTheClosedForm) 
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
 
-  // Independent scalar solve: T = F_tca(delta(T)) with the closed-form delta(T), by bisection.
+  // Independent scalar solve: T = F_tca(delta(T)) with the linear closed-form delta(T), by
+  // Brent's method (not the solvers' Newton).
   const tca::Tca& tca = *m.actuators[1].drive.tca;
   const double t_K = units::degC_to_K(110.0);
   auto g = [&](double T) {
@@ -182,21 +164,19 @@ TEST(ShootingClosedForm, TcaDriveTensionSolvesTheScalarEquationOfTheClosedForm) 
   // and the T at which the closed-form delta reaches 0.1 m (inside Eq. (5)'s range; g < 0).
   const double d0 = closed_form(m, {0.003, 0.0}).delta[1];
   const double slope = closed_form(m, {0.003, 1.0}).delta[1] - d0;
-  double lo = (0.1 - d0) / slope, hi = 0.0;
+  const double lo = (0.1 - d0) / slope, hi = 0.0;
   ASSERT_LT(g(lo), 0.0);
   ASSERT_GT(g(hi), 0.0);
-  for (int k = 0; k < 200 && hi - lo > 1e-17; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (g(mid) < 0.0 ? lo : hi) = mid;
-  }
-  const double T_ref = 0.5 * (lo + hi);
+  const auto root = roots::brent(g, lo, hi, g(lo), g(hi), 5e-18);
+  ASSERT_TRUE(root.has_value());
+  const double T_ref = root->x;
   ASSERT_LT(T_ref, 0.0) << "a heated extension TCA pushes";
   const rod::Result res = solver.make_result(act, sol, s);
   expect_matches_closed_form(m, sol, s, {0.003, T_ref}, res);
 }
 
 // --------------------------------------------------------------------------------------
-// Roll-up and helix under an end moment (physics-notes section 5).
+// Roll-up and helix under an end moment (docs/conventions.md "Benchmark references").
 
 /// RK4 error bound for a rotation at rate kappa over L with N steps: the RK4 amplification
 /// of y' = i kappa y errs by (kappa h)^5 / 120 per step, so the tip (lever <= L) errs by at
@@ -264,7 +244,7 @@ TEST(Helix, EndMomentWithEqualBendingAndTorsionStiffnessGivesConstantCurvature) 
 }
 
 // --------------------------------------------------------------------------------------
-// Mattiasson's cantilever (physics-notes section 5).
+// Mattiasson's cantilever (docs/conventions.md "Benchmark references").
 
 struct MattiassonCase {
   double k, w, u;

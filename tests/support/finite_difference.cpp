@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "common/finite_difference.hpp"
 
 namespace tcasim::test_support {
 
-double default_relative_step() { return std::cbrt(std::numeric_limits<double>::epsilon()); }
+double default_relative_step() { return fd::kCentralRelativeStep; }
 
 double central_difference_step(double x, double relative_step) {
   const double h = relative_step * std::max(1.0, std::abs(x));

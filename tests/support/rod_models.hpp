@@ -125,8 +125,8 @@ inline void add_tca_string(rod::RodModel& m, const std::string& name,
   m.actuators.push_back(a);
 }
 
-/// Initial bending of the circular manipulator (physics-notes: it has one; the paper
-/// gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the TCA,
+/// Initial bending of the circular manipulator (docs/conventions.md "Initial bending": it
+/// has one; the paper gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the TCA,
 /// so the cold TCA is slightly stretched (delta > 0, coils open).
 inline const Eigen::Vector3d kCircularInitialCurvature_1_m{0.0, -0.5, 0.0};
 /// Gravity: the manipulators stand on their base with the centerline along +z, so
@@ -190,7 +190,7 @@ struct StrutClosedForm {
   Eigen::Vector3d tip_W_m;
 };
 
-/// Closed form ([Pawlowski2019] straight strings, physics notes): nu3 = 1 - (T_s + P)/(E A),
+/// Closed form (straight strings, docs/conventions.md "Closed form"): nu3 = 1 - (T_s + P)/(E A),
 /// omega_y = T_s x / (E I_y), delta = L (nu3 - omega_y x) - L = 0 gives
 /// T_s = -P (1/(E A)) / (1/(E A) + x^2/(E I_y)); the arc p = nu3 ((1 - cos kL)/k, 0, sin(kL)/k).
 inline StrutClosedForm strut_closed_form(const rod::RodModel& m) {

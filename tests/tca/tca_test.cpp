@@ -1,4 +1,4 @@
-// Unit tests of the TCA model ([Pawlowski2019] Section II; physics-notes section 1).
+// Unit tests of the TCA model ([Pawlowski2019] Section II; docs/conventions.md "TCA model ([Pawlowski2019] Section II)").
 #include "tca/tca.hpp"
 
 #include <gtest/gtest.h>
@@ -99,7 +99,7 @@ TEST(TcaEnergy, ComplementaryEnergyGivesEq3AndTwiceEq4) {
 }
 
 TEST(TcaConversions, Fig5GeometryGivesPhysicsNotesValues) {
-  // physics-notes 1 quotes alpha0, n and d0 to 3-4 digits.
+  // docs/conventions.md "TCA data of the paper's experiments" quotes alpha0, n and d0 to 3-4 digits.
   const Tca t3(three_thread(), sun2022()), t4(four_thread(), sun2022());
   EXPECT_NEAR(units::rad_to_deg(t3.initial_pitch_angle_rad()), 12.79, 0.005);
   EXPECT_NEAR(t3.coil_count(), 154.3, 0.05);

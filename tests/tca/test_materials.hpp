@@ -1,6 +1,6 @@
 #pragma once
 // Materials and TCAs for the tca tests, built in code so the tests do not depend on the
-// scenario parser. Values follow data/materials/*.json and physics-notes section 1.
+// scenario parser. Values follow data/materials/*.json and docs/conventions.md "TCA material data".
 #include "common/units.hpp"
 #include "tca/tca.hpp"
 
@@ -37,7 +37,7 @@ inline Material softening() {
   return m;
 }
 
-/// The 3-thread TCA of Fig. 5 (l and L as corrected in physics-notes section 1).
+/// The 3-thread TCA of Fig. 5 (l and L as corrected in docs/conventions.md "TCA data of the paper's experiments").
 inline Parameters three_thread(Kind kind = Kind::kExtension,
                                F12Form form = F12Form::kCastigliano) {
   Parameters p;

@@ -1,7 +1,7 @@
 // validate_fig5_tca: elongation-temperature curves of the two extension TCAs of Fig. 5.
 //
 // What it checks: the TCA model of [Pawlowski2019] Section II (Eqs. (1)-(5), closed coils,
-// physics-notes section 1) on the experiment of Section V-A / Fig. 5: the 3-thread TCA
+// docs/conventions.md "TCA data of the paper's experiments") on the experiment of Section V-A / Fig. 5: the 3-thread TCA
 // (l = 497 mm, L = 110 mm, D = 2 mm, N = 300) and the 4-thread TCA (l = 471 mm, L = 110 mm,
 // D = 2.13 mm, N = 259), hanging loads 5 g + 2.5 g and 10 g + 5 g friction equivalents
 // (F = -m g), 25..160 degC in steps of 5 degC, for every shipped material and both

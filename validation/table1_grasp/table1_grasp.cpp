@@ -16,7 +16,7 @@
 // Reference
 //   Table I: measured firm-grip temperatures 95/120/135 degC (5 degC oven steps); the paper's
 //   model predicted 93.7/114.8/136.3 degC. The paper's TCA material values are not published
-//   (physics-notes section 1), so agreement is not a gate.
+//   (docs/conventions.md "TCA material data"), so agreement is not a gate.
 // Gates (what the method guarantees)
 //   1. every grasp solve converges and the Eq. (43) temperature agrees with the root of the
 //      blocked-tip forward solve to <= 0.01 degC;
@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "common/root_finding.hpp"
 #include "common/units.hpp"
 #include "cosserat/inverse.hpp"
 #include "cosserat/shooting.hpp"
@@ -170,18 +171,20 @@ int main(int argc, char** argv) {
         const tcasim::cosserat::GraspResult r = grasp(variant(base, mat, form, s), kMasses_g[1], false);
         return r.converged ? K_to_degC(r.temperature_K) - kMeasured_degC[1] : 1e3;
       };
-      double a = 1e-3, b = 1.0, ga = g(a), gb = g(b);
+      const double a = 1e-3, b = 1.0, ga = g(a), gb = g(b);
       if (!(ga > 0.0 && gb < 0.0)) {
         fmt::print("    {}: no sign change of T_2g - 120 degC on s in [{}, {}] ({:.3g}, {:.3g}): not calibrated\n",
                    mat, a, b, ga, gb);
         continue;
       }
-      for (int it = 0; it < 200 && std::abs(b - a) > 1e-14; ++it) {  // bisection: robust, cheap
-        const double c = 0.5 * (a + b), gc = g(c);
-        if (std::abs(gc) <= kFitTolerance_degC) { a = b = c; break; }
-        if (gc > 0.0) a = c; else b = c;
+      // Brent's method (g jumps where the grasp becomes unreachable; its bisection
+      // safeguard keeps the bracket): stop at |g| <= kFitTolerance_degC.
+      const auto root = tcasim::roots::brent(g, a, b, ga, gb, 5e-15, 200, kFitTolerance_degC);
+      if (!root) {
+        fmt::print("    {}: calibration root search failed: not calibrated\n", mat);
+        continue;
       }
-      const double s = 0.5 * (a + b);
+      const double s = root->x;
       fmt::print("    {} ({}): s = {:.6f}\n", mat, fname, s);
       run_set(variant(base, mat, form, s), mat, fname, fmt::format("expansion_scale={:.6f}", s));
     }

@@ -1,28 +1,33 @@
 #pragma once
-/// Bracketed scalar root finding for the TCA laws: Brent's method (inverse quadratic
-/// interpolation and secant steps, safeguarded by bisection), so a root inside a sign
-/// change is always found. Internal to src/tca (the rod solvers use their own Newton).
+/// Bracketed scalar root finding, the one root finder of the library: Brent's method
+/// (inverse quadratic interpolation and secant steps, safeguarded by bisection), so a root
+/// inside a sign change is always found, also of a discontinuous f. Users: the TCA laws
+/// (src/tca), the inverse solver's blocked-tip cross-check (cosserat/inverse) and the
+/// validation programs' calibrations. The rod solvers use their own Newton iterations.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-namespace tcasim::tca::detail {
+namespace tcasim::roots {
 
 /// Outcome of a bracketed solve.
 struct RootResult {
-  double x;        ///< root estimate: |bracket| <= 2 * tolerance or f(x) == 0
+  double x;        ///< root estimate: |bracket| <= 2 * tolerance, |f(x)| <= f_tol or f(x) == 0
   int iterations;  ///< function evaluations after the two end points
 };
 
 /// Finds x in [a, b] with f(x) = 0, given fa = f(a), fb = f(b) of opposite signs (or one
-/// zero). Stops when the bracket is shorter than 2 (abs_tol + 4 eps |x|) or f(x) = 0.
-/// Returns nullopt when the end points do not bracket a root.
+/// zero). Stops when the bracket is shorter than 2 (abs_tol + 4 eps |x|), |f(x)| <= f_tol
+/// (0: only an exact zero) or after max_iterations evaluations (then x is the best
+/// estimate). Returns nullopt when the end points do not bracket a root or f returns a
+/// non-finite value (at an end or at an iterate).
 template <class F>
 std::optional<RootResult> brent(F&& f, double a, double b, double fa, double fb, double abs_tol,
-                                int max_iterations = 200) {
+                                int max_iterations = 200, double f_tol = 0.0) {
   constexpr double kEps = 2.220446049250313e-16;
-  if (fa == 0.0) return RootResult{a, 0};
-  if (fb == 0.0) return RootResult{b, 0};
+  if (!std::isfinite(fa) || !std::isfinite(fb)) return std::nullopt;
+  if (std::abs(fa) <= f_tol) return RootResult{a, 0};
+  if (std::abs(fb) <= f_tol) return RootResult{b, 0};
   if ((fa > 0.0) == (fb > 0.0)) return std::nullopt;
   double c = a, fc = fa, d = b - a, e = d;
   int it = 0;
@@ -42,7 +47,7 @@ std::optional<RootResult> brent(F&& f, double a, double b, double fa, double fb,
     }
     const double tol = abs_tol + 4.0 * kEps * std::abs(b);
     const double m = 0.5 * (c - b);
-    if (std::abs(m) <= tol || fb == 0.0) break;
+    if (std::abs(m) <= tol || std::abs(fb) <= f_tol) break;
     if (std::abs(e) >= tol && std::abs(fa) > std::abs(fb)) {
       // Interpolation: secant when a == c, inverse quadratic otherwise.
       double p, q;
@@ -72,6 +77,7 @@ std::optional<RootResult> brent(F&& f, double a, double b, double fa, double fb,
     fa = fb;
     b += (std::abs(d) > tol) ? d : (m > 0.0 ? tol : -tol);
     fb = f(b);
+    if (!std::isfinite(fb)) return std::nullopt;
   }
   return RootResult{b, it};
 }
@@ -92,4 +98,4 @@ std::optional<RootResult> first_root(F&& f, double lo, double hi, int intervals,
   return std::nullopt;
 }
 
-}  // namespace tcasim::tca::detail
+}  // namespace tcasim::roots

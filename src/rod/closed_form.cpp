@@ -1,0 +1,124 @@
+#include "rod/closed_form.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "common/error.hpp"
+
+namespace tcasim::rod {
+
+ConstantStrains closed_form_strains(const RodModel& model, const std::vector<double>& cT) {
+  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
+  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    const Eigen::Vector3d r = model.actuators[i].routing.r(0.0);
+    sum_T += cT[i];
+    sum_Tx += cT[i] * r.x();
+    sum_Ty += cT[i] * r.y();
+  }
+  // docs/conventions.md "Closed form": the moment sum c T r x e_z balances K_omega (omega -
+  // omega*), the force sum c T e_z balances K_nu (nu - nu*).
+  ConstantStrains s;
+  s.e = Eigen::Vector3d(0.0, 0.0, -sum_T / K_nu.z());
+  s.omega = model.reference_curvature_B_1_m + Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
+  return s;
+}
+
+std::vector<double> closed_form_elongations_m(const RodModel& model, const std::vector<double>& cT) {
+  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
+  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  std::vector<double> delta(model.actuators.size(), 0.0);
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    const Eigen::Vector3d ri = model.actuators[i].routing.r(0.0);
+    for (std::size_t j = 0; j < model.actuators.size(); ++j) {
+      const Eigen::Vector3d rj = model.actuators[j].routing.r(0.0);
+      const double C = 1.0 / K_nu.z() + ri.y() * rj.y() / K_omega.x() + ri.x() * rj.x() / K_omega.y();
+      delta[i] -= model.length_m * C * cT[j];
+    }
+  }
+  return delta;
+}
+
+void ramp_segments(const tca::Material& material, const std::vector<tca::Segment>& targets,
+                   double lambda, std::vector<tca::Segment>& out) {
+  out = targets;
+  for (tca::Segment& seg : out) seg.temperature_K = ramp_temperature_K(material, seg.temperature_K, lambda);
+}
+
+bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_actuators,
+                          const std::vector<std::vector<tca::Segment>>& segments,
+                          const Eigen::Matrix<double, 6, 1>& extra, const GuessTensionOptions& options,
+                          std::vector<double>& cT, Eigen::VectorXd& T) {
+  const int n = static_cast<int>(tca_actuators.size());
+  if (n == 0) return true;
+  const double L = model.length_m;
+  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
+  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  const Eigen::Vector3d nu_star = Eigen::Vector3d::UnitZ();
+  Eigen::VectorXd g(n), gt(n), dT(n), Tt(n);
+  Eigen::MatrixXd G(n, n);
+  // g_k at tensions Tk (it may throw DomainError), with its Jacobian when Gk is non-null:
+  //   dg_k/dT_l = dphi_k/dF delta_kl + dphi_k/d delta L qh_k . c_l (dnu_l + domega_l x r_k),
+  //   dnu_l = -e_z / (E A), domega_l = (-r_l,y / (E I_x), r_l,x / (E I_y), 0)   (closed form).
+  auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
+    for (int k = 0; k < n; ++k) {
+      const int i = tca_actuators[k];
+      cT[i] = model.actuators[i].count * Tk[k];
+    }
+    const ConstantStrains cf = closed_form_strains(model, cT);
+    const Eigen::Vector3d nu = nu_star + cf.e + extra.head<3>();
+    const Eigen::Vector3d omega = cf.omega + extra.tail<3>();
+    for (int k = 0; k < n; ++k) {
+      const int i = tca_actuators[k];
+      const Actuator& act = model.actuators[i];
+      const Eigen::Vector3d r = act.routing.r(0.0);
+      const Eigen::Vector3d q = nu + omega.cross(r) + act.routing.dr(0.0);
+      const double delta = L * q.norm() - act.rest_length_m;
+      const tca::ContactResidual c = tca::contact_residual(*act.drive.tca, Tk[k], delta, segments[i]);
+      gk[k] = c.phi_N;
+      if (Gk) {
+        const Eigen::Vector3d qh = q.normalized();
+        for (int l = 0; l < n; ++l) {
+          const Actuator& al = model.actuators[tca_actuators[l]];
+          const Eigen::Vector3d rl = al.routing.r(0.0);
+          const Eigen::Vector3d dnu(0.0, 0.0, -al.count / K_nu.z());
+          const Eigen::Vector3d domega(-al.count * rl.y() / K_omega.x(), al.count * rl.x() / K_omega.y(), 0.0);
+          (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) + c.dphi_ddelta_N_m * L * qh.dot(dnu + domega.cross(r));
+        }
+      }
+    }
+    return gk.allFinite();
+  };
+  bool ok = false;
+  try {
+    ok = eval(T, g, &G);
+    const double tolerance = std::max(options.tolerance_N, options.tolerance_rel * g.lpNorm<Eigen::Infinity>());
+    for (int it = 0; ok && it < options.max_iterations && g.lpNorm<Eigen::Infinity>() > tolerance; ++it) {
+      dT = G.partialPivLu().solve(-g);
+      if (!dT.allFinite()) break;
+      double t = 1.0;
+      bool accepted = false;
+      for (int ls = 0; ls < options.max_halvings && !accepted; ++ls, t *= 0.5) {
+        Tt = T + t * dT;
+        try {
+          accepted = eval(Tt, gt, nullptr) && gt.squaredNorm() < g.squaredNorm();
+        } catch (const DomainError&) {
+          accepted = false;
+        }
+      }
+      if (!accepted) break;
+      T = Tt;
+      ok = eval(T, g, &G);
+    }
+  } catch (const DomainError&) {
+    ok = false;
+  }
+  for (int k = 0; k < n; ++k) {
+    const int i = tca_actuators[k];
+    cT[i] = model.actuators[i].count * T[k];
+  }
+  return ok && T.allFinite();
+}
+
+}  // namespace tcasim::rod

@@ -1,0 +1,223 @@
+// Scenario reader: actuators (routing, drives, rest lengths).
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "common/units.hpp"
+#include "rod/reference_path.hpp"
+#include "rod/scenario.hpp"
+#include "rod/scenario_reading.hpp"
+
+namespace tcasim::rod::scenario_detail {
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Actuators
+
+/// Largest distance from the centerline an offset may have in direction (x, y); none
+/// for a custom section (no outline to check against).
+std::optional<double> edge_distance(const Section& s, double x, double y) {
+  if (s.shape == Section::Shape::kCustom) return std::nullopt;
+  return s.half_extent_m(x, y) * (1.0 + kEdgeRelativeTolerance);
+}
+
+Routing parse_routing(const json& j, const std::string& path, const Section& section) {
+  const std::string type = peek_choice(j, path, "type", {"straight", "helix"});
+  Routing r;
+  if (type == "straight") {
+    const Obj o(j, path, {"type", "offset_m"});
+    r.type = Routing::Type::kStraight;
+    r.offset_m = o.vector2("offset_m");
+    const double dist = r.offset_m.norm();
+    if (dist > 0.0) {
+      if (const auto limit = edge_distance(section, r.offset_m.x(), r.offset_m.y())) {
+        require(dist <= *limit, o.key("offset_m"), show(o.required("offset_m")),
+                fmt::format("lies outside the body section: {} m from the centerline, the edge "
+                            "is at {} m in that direction",
+                            dist, section.half_extent_m(r.offset_m.x(), r.offset_m.y())));
+      }
+    }
+  } else {
+    const Obj o(j, path, {"type", "radius_m", "phase_deg", "turns_per_m"});
+    r.type = Routing::Type::kHelix;
+    r.radius_m = o.positive("radius_m");
+    r.phase_rad = units::deg_to_rad(o.optional_number("phase_deg").value_or(0.0));
+    r.turns_per_m = o.number("turns_per_m");
+    if (section.shape != Section::Shape::kCustom) {
+      // The helix sweeps every direction: it must fit where the section is narrowest.
+      const double narrowest = std::min(section.half_extent_m(1.0, 0.0), section.half_extent_m(0.0, 1.0));
+      require(r.radius_m <= narrowest * (1.0 + kEdgeRelativeTolerance), o.key("radius_m"),
+              r.radius_m,
+              fmt::format("puts the helix outside the body section (narrowest half extent {} m)",
+                          narrowest));
+    }
+  }
+  return r;
+}
+
+/// A drive temperature [degC] checked against absolute zero and the TCA material's range.
+double parse_drive_temperature_K(const Obj& o, const std::string& k, const tca::Tca& t) {
+  const double t_degC = o.number(k);
+  const std::string key = o.key(k);
+  const double t_K = above_absolute_zero_K(t_degC, key);
+  const tca::Material& m = t.material();
+  require(t_K >= m.min_temperature_K && t_K <= m.max_temperature_K, key, t_degC,
+          fmt::format("is outside the valid range [{:.10g}, {:.10g}] degC of material '{}'",
+                      units::K_to_degC(m.min_temperature_K), units::K_to_degC(m.max_temperature_K),
+                      m.name));
+  try {
+    (void)m.at(t_K);
+  } catch (const DomainError& e) {
+    throw InputError(key, format_value(t_degC),
+                     fmt::format("is outside the domain of material '{}': {}", m.name, e.what()));
+  }
+  return t_K;
+}
+
+Drive parse_drive(const json& j, const std::string& path, const RodModel& model) {
+  const std::string type = peek_choice(j, path, "type", {"tension", "tca"});
+  Drive d;
+  if (type == "tension") {
+    const Obj o(j, path, {"type", "tension_N"});
+    d.type = Drive::Type::kTension;
+    d.tension_N = o.number("tension_N");
+    return d;
+  }
+  const Obj o(j, path, {"type", "tca", "temperature_degC", "segments"});
+  d.type = Drive::Type::kTca;
+  d.tca_id = o.string("tca");
+  const auto it = model.tcas.find(d.tca_id);
+  if (it == model.tcas.end()) {
+    std::vector<std::string> ids;
+    for (const auto& kv : model.tcas) ids.push_back(kv.first);
+    throw InputError(o.key("tca"), quote(d.tca_id),
+                     fmt::format("is not a key of tcas (defined: {})",
+                                 ids.empty() ? std::string("none") : fmt::format("{}", fmt::join(ids, ", "))));
+  }
+  d.tca = it->second;
+  const bool has_t = o.has("temperature_degC");
+  const bool has_seg = o.has("segments");
+  if (has_t && has_seg) {
+    throw InputError(o.key("segments"), show(o.required("segments")),
+                     "must not be given together with temperature_degC (give exactly one)");
+  }
+  if (!has_t && !has_seg) {
+    throw InputError(o.key("temperature_degC"), "(missing)",
+                     "is required unless segments is given (give exactly one)");
+  }
+  if (has_t) {
+    d.segments = {tca::Segment{1.0, parse_drive_temperature_K(o, "temperature_degC", *d.tca)}};
+    return d;
+  }
+  d.segmented = true;
+  const json& segs = o.required("segments");
+  if (!segs.is_array() || segs.empty()) {
+    throw InputError(o.key("segments"), show(segs),
+                     "must be a non-empty array of {\"fraction\", \"temperature_degC\"}");
+  }
+  if (segs.size() > kMaxSegments) {
+    throw InputError(o.key("segments"), fmt::format("(an array of {} segments)", segs.size()),
+                     fmt::format("must have at most {} segments", kMaxSegments));
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Obj so(segs[i], fmt::format("{}[{}]", o.key("segments"), i), {"fraction", "temperature_degC"});
+    const double f = so.number("fraction");
+    require(f > 0.0 && f <= 1.0, so.key("fraction"), f, "must lie in (0, 1]");
+    sum += f;
+    d.segments.push_back(tca::Segment{f, parse_drive_temperature_K(so, "temperature_degC", *d.tca)});
+  }
+  require(std::abs(sum - 1.0) <= kFractionSumTolerance, o.key("segments"),
+          fmt::format("(fractions summing to {})", format_value(sum)),
+          fmt::format("must have fractions summing to 1 (within {})", kFractionSumTolerance));
+  return d;
+}
+
+/// The rest length of one string of `a` (docs/scenario-format.md, "Rest length and
+/// regularity"): the reference path length, less the TCA's pre-elongation for a TCA drive.
+/// Refuses a reference path that folds, a coiled length that does not match the path
+/// without a pre_elongation_m, and a pre-elongation the TCA cannot have.
+double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
+  const ReferencePath ref = reference_path(a.routing, model.reference_curvature_B_1_m, model.length_m);
+  const bool straight = a.routing.type == Routing::Type::kStraight;
+  const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
+  require(ref.min_axial > 0.0, routing_key,
+          straight ? show(o.required("routing").at("offset_m")) : format_value(a.routing.radius_m),
+          fmt::format("makes the reference string path fold on the precurved body: e3 . (e3 + "
+                      "omega* x r + r') = {} at s = {} m, must be > 0 (for a straight string: the "
+                      "offset toward the centre of curvature times |omega*_perp| must be < 1)",
+                      fmt::format("{:.6g}", ref.min_axial), fmt::format("{:.6g}", ref.min_axial_s_m)));
+  const bool has_pre = o.has("pre_elongation_m");
+  if (a.drive.type != Drive::Type::kTca) {
+    if (has_pre) {
+      throw InputError(o.key("pre_elongation_m"), show(o.required("pre_elongation_m")),
+                       "applies only to a TCA drive (a tension drive's rest length is its path length)");
+    }
+    return ref.length_m;
+  }
+  const tca::Parameters& p = a.drive.tca->parameters();
+  const std::string coiled_key = fmt::format("tcas.{}.coiled_length_m", a.drive.tca_id);
+  if (!has_pre) {
+    const double mismatch = (p.coiled_length_m - ref.length_m) / ref.length_m;
+    require(std::abs(mismatch) <= kCoiledLengthRelativeTolerance, coiled_key, p.coiled_length_m,
+            fmt::format("must equal the reference path length {} m of {} (within {} relative; it "
+                        "differs by {:.3g}), or {} must give the TCA's elongation there",
+                        fmt::format("{:.10g}", ref.length_m), o.path(), kCoiledLengthRelativeTolerance, mismatch,
+                        o.key("pre_elongation_m")));
+    return ref.length_m;
+  }
+  const double pre = a.pre_elongation_m;
+  const std::string pre_key = o.key("pre_elongation_m");
+  if (p.kind == tca::Kind::kExtension) {
+    require(pre >= 0.0, pre_key, pre,
+            "must be >= 0 for an extension TCA (its coils cannot be shorter than closed)");
+  }
+  // delta = l (sin alpha - sin alpha0) with alpha in (0, 90) deg: -L < delta < l - L.
+  require(pre > -p.coiled_length_m && pre < p.fiber_length_m - p.coiled_length_m, pre_key, pre,
+          fmt::format("must lie in (-coiled_length_m, fiber_length_m - coiled_length_m) = ({}, {}) m "
+                      "of TCA '{}' (a coil between flat and straight)",
+                      format_value(-p.coiled_length_m), format_value(p.fiber_length_m - p.coiled_length_m),
+                      a.drive.tca_id));
+  require(pre < ref.length_m, pre_key, pre,
+          fmt::format("must be below the reference path length {} m (the rest length must be positive)",
+                      fmt::format("{:.10g}", ref.length_m)));
+  return ref.length_m - pre;
+}
+
+}  // namespace
+
+Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model) {
+  const Obj o(j, path, {"name", "comment", "routing", "count", "drive", "pre_elongation_m"});
+  Actuator a;
+  a.name = o.nonempty_string("name");
+  a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section);
+  if (o.has("count")) {
+    // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
+    // possibly); 1e9 or 2.0 are floats, which are refused.
+    const json& c = o.required("count");
+    const bool small = c.is_number_unsigned() ? c.get<unsigned long long>() <= static_cast<unsigned long long>(kMaxCount)
+                                              : c.is_number_integer();
+    const long long n = small ? c.get<long long>() : 0;
+    if (n < 1 || n > kMaxCount) {
+      throw InputError(o.key("count"), show(c), fmt::format("must be an integer in [1, {}]", kMaxCount));
+    }
+    a.count = static_cast<int>(n);
+  }
+  a.drive = parse_drive(o.required("drive"), o.key("drive"), model);
+  if (a.drive.type == Drive::Type::kTca && o.has("pre_elongation_m")) {
+    a.pre_elongation_m = o.number("pre_elongation_m");
+  }
+  a.rest_length_m = rest_length(o, a, model);
+  // [Pawlowski2019] Eq. (18): L_i = rest length / body length.
+  a.length_ratio = a.rest_length_m / model.length_m;
+  return a;
+}
+
+}  // namespace tcasim::rod::scenario_detail

@@ -1,0 +1,222 @@
+#pragma once
+// Internal to src/rod: the strict JSON reading shared by the scenario reader's parts
+// (scenario.cpp: documents, materials; scenario_body.cpp: section, body material, base
+// rotation; scenario_tca.cpp: TCA laws; scenario_actuators.cpp: routing, drives, rest
+// lengths). Every malformed input throws InputError naming key path, value and rule.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/error.hpp"
+#include "rod/model.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::rod::scenario_detail {
+
+using json = nlohmann::json;
+
+/// Segment fractions are typed as decimals; their sum must be 1 up to this (far above
+/// round-off of a few terms, far below any intended fraction).
+inline constexpr double kFractionSumTolerance = 1e-9;
+/// base.rotation: max |R^T R - I| and |det R - 1| allowed (10 typed digits per entry).
+inline constexpr double kRotationTolerance = 1e-9;
+/// An offset exactly on the section edge counts as inside; this relative slack absorbs
+/// the round-off of the half-extent computation.
+inline constexpr double kEdgeRelativeTolerance = 1e-12;
+/// Longest value text quoted in a message.
+inline constexpr std::size_t kMaxValueChars = 80;
+/// Number of temperatures at which a material law is checked over its valid range.
+inline constexpr int kMaterialRangeSamples = 201;
+/// A TCA's coiled length must equal its string's reference path length within this
+/// relative amount unless the actuator gives pre_elongation_m (docs/scenario-format.md):
+/// far above the round-off of the path length, below any intended pre-elongation (1 um on 1 m).
+inline constexpr double kCoiledLengthRelativeTolerance = 1e-6;
+/// Upper bounds on counts, each with its reason. Parallel strings of one actuator: a
+/// U-shaped TCA is 2 and each string needs its own channel in the section, so more than
+/// 1000 cannot be a string actuator.
+inline constexpr int kMaxCount = 1000;
+/// Actuators of one rod: the shooting Newton system is dense in the TCA tensions (6 + n
+/// unknowns) and every right-hand side loops over all strings; the paper's robots have
+/// 1 to 4, and 256 keeps one solve within seconds.
+inline constexpr std::size_t kMaxActuators = 256;
+/// Segments of one TCA drive: every tension evaluation solves the series of all segments;
+/// 1000 resolves any temperature profile far below the TCA's own length scale.
+inline constexpr std::size_t kMaxSegments = 1000;
+
+inline const std::string kScenarioSchema = "tcasim.scenario/1";
+inline const std::string kTcasSchema = "tcasim.tcas/1";
+
+inline std::string join_path(const std::string& prefix, const std::string& key) {
+  if (prefix.empty()) return key;
+  if (prefix.back() == ':') return prefix + key;
+  return prefix + "." + key;
+}
+
+inline std::string show(const json& j) {
+  std::string s = j.dump();
+  if (s.size() > kMaxValueChars) s = s.substr(0, kMaxValueChars - 3) + "...";
+  return s;
+}
+
+inline std::string quote(const std::string& s) { return json(s).dump(); }
+
+/// Human-readable name of a JSON value's type, for "must be a number, not a string".
+inline std::string type_name(const json& j) { return j.type_name(); }
+
+inline double as_number(const json& v, const std::string& key) {
+  if (!v.is_number()) {
+    throw InputError(key, show(v), fmt::format("must be a number, not {}", type_name(v)));
+  }
+  const double x = v.get<double>();
+  require(std::isfinite(x), key, x, "must be a finite number");
+  return x;
+}
+
+/// A JSON object read strictly: every key must be in `allowed`, and every access names
+/// its full key path in errors.
+class Obj {
+ public:
+  Obj(const json& j, std::string path, std::vector<std::string> allowed)
+      : j_(j), path_(std::move(path)) {
+    if (!j.is_object()) {
+      throw InputError(path_.empty() ? "(document)" : path_, show(j),
+                       fmt::format("must be a JSON object, not {}", type_name(j)));
+    }
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end()) {
+        throw InputError(key(it.key()), show(it.value()),
+                         fmt::format("is not an allowed key here (allowed: {})",
+                                     fmt::join(allowed, ", ")));
+      }
+    }
+  }
+
+  std::string key(const std::string& k) const { return join_path(path_, k); }
+  const std::string& path() const { return path_; }
+  bool has(const std::string& k) const { return j_.contains(k); }
+
+  const json& required(const std::string& k) const {
+    if (!has(k)) throw InputError(key(k), "(missing)", "is required");
+    return j_.at(k);
+  }
+
+  double number(const std::string& k) const { return as_number(required(k), key(k)); }
+
+  std::optional<double> optional_number(const std::string& k) const {
+    if (!has(k)) return std::nullopt;
+    return number(k);
+  }
+
+  double positive(const std::string& k) const {
+    const double x = number(k);
+    require(x > 0.0, key(k), x, "must be positive");
+    return x;
+  }
+
+  std::string string(const std::string& k) const {
+    const json& v = required(k);
+    if (!v.is_string()) {
+      throw InputError(key(k), show(v), fmt::format("must be a string, not {}", type_name(v)));
+    }
+    return v.get<std::string>();
+  }
+
+  std::string nonempty_string(const std::string& k) const {
+    std::string s = string(k);
+    require(!s.empty(), key(k), quote(s), "must not be empty");
+    return s;
+  }
+
+  std::string optional_string(const std::string& k) const { return has(k) ? string(k) : ""; }
+
+  /// A string that must be one of `options`.
+  std::string choice(const std::string& k, const std::vector<std::string>& options) const {
+    std::string s = string(k);
+    if (std::find(options.begin(), options.end(), s) == options.end()) {
+      throw InputError(key(k), quote(s),
+                       fmt::format("must be one of: {}", fmt::join(options, ", ")));
+    }
+    return s;
+  }
+
+  /// A fixed-size array of finite numbers.
+  Eigen::VectorXd vector(const std::string& k, int size) const {
+    const json& v = required(k);
+    if (!v.is_array() || static_cast<int>(v.size()) != size) {
+      throw InputError(key(k), show(v), fmt::format("must be an array of {} numbers", size));
+    }
+    Eigen::VectorXd out(size);
+    for (int i = 0; i < size; ++i) {
+      out[i] = as_number(v[static_cast<std::size_t>(i)], fmt::format("{}[{}]", key(k), i));
+    }
+    return out;
+  }
+  Eigen::Vector3d vector3(const std::string& k) const { return vector(k, 3); }
+  Eigen::Vector2d vector2(const std::string& k) const { return vector(k, 2); }
+
+ private:
+  const json& j_;
+  std::string path_;
+};
+
+/// Reads the discriminating string of a polymorphic object (e.g. `shape`, `type`) before
+/// the object's allowed keys are known.
+inline std::string peek_choice(const json& j, const std::string& path, const std::string& k,
+                        const std::vector<std::string>& options) {
+  if (!j.is_object()) {
+    throw InputError(path.empty() ? "(document)" : path, show(j),
+                     fmt::format("must be a JSON object, not {}", type_name(j)));
+  }
+  if (!j.contains(k)) {
+    throw InputError(join_path(path, k), "(missing)",
+                     fmt::format("is required (one of: {})", fmt::join(options, ", ")));
+  }
+  const json& v = j.at(k);
+  const std::string key = join_path(path, k);
+  if (!v.is_string()) {
+    throw InputError(key, show(v), fmt::format("must be a string, not {}", type_name(v)));
+  }
+  const std::string s = v.get<std::string>();
+  if (std::find(options.begin(), options.end(), s) == options.end()) {
+    throw InputError(key, quote(s), fmt::format("must be one of: {}", fmt::join(options, ", ")));
+  }
+  return s;
+}
+
+
+// ---------------------------------------------------------------------------------------
+// Readers of the parts (scenario_body.cpp, scenario_tca.cpp, scenario_actuators.cpp).
+
+/// The `section` object (shape, dimensions, optional torsion constant).
+Section parse_section(const json& j, const std::string& path);
+/// The body's material (E, Poisson ratio or G, density).
+BodyMaterial parse_body_material(const Obj& o);
+/// A row-major 3x3 rotation at key k (orthonormal to kRotationTolerance, det +1).
+Eigen::Matrix3d parse_rotation(const Obj& o, const std::string& k);
+
+/// A temperature polynomial property (degC) of a TCA material.
+tca::PolynomialDegC parse_property(const Obj& o, const std::string& k);
+/// The material's optional Eq. (4) factor form.
+tca::F12Form parse_f12_form(const Obj& o);
+/// degC -> K, refusing temperatures at or below absolute zero.
+double above_absolute_zero_K(double t_degC, const std::string& key);
+/// Checks that the material's moduli and diameter ratio are positive at t_K.
+void check_material_positive_at(const tca::Material& m, double t_K, const std::string& key);
+/// The `tcas` object: TCAs by id.
+std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j, const std::string& path,
+                                                                  const std::string& base_dir);
+
+/// One entry of `actuators` (routing, count, drive, rest length) on the body `model`.
+Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model);
+
+}  // namespace tcasim::rod::scenario_detail

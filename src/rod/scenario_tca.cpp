@@ -1,0 +1,152 @@
+// Scenario reader: TCA laws (the `tcas` object) and TCA material properties.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "common/units.hpp"
+#include "rod/reference_path.hpp"
+#include "rod/scenario.hpp"
+#include "rod/scenario_reading.hpp"
+
+namespace tcasim::rod::scenario_detail {
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// TCAs
+
+std::shared_ptr<const tca::Tca> parse_tca(const json& j, const std::string& path,
+                                          const std::string& base_dir) {
+  (void)base_dir;
+  const Obj o(j, path,
+              {"kind", "coiled_length_m", "fiber_length_m", "pitch_angle_deg", "outer_diameter_m",
+               "twist_turns", "f12_form", "material", "comment"});
+  tca::Parameters p;
+  p.kind = o.choice("kind", {"extension", "contraction"}) == "extension" ? tca::Kind::kExtension
+                                                                         : tca::Kind::kContraction;
+  p.coiled_length_m = o.positive("coiled_length_m");
+  const bool has_l = o.has("fiber_length_m");
+  const bool has_alpha = o.has("pitch_angle_deg");
+  if (has_l && has_alpha) {
+    throw InputError(o.key("pitch_angle_deg"), show(o.required("pitch_angle_deg")),
+                     "must not be given together with fiber_length_m (give exactly one)");
+  }
+  if (!has_l && !has_alpha) {
+    throw InputError(o.key("fiber_length_m"), "(missing)",
+                     "is required unless pitch_angle_deg is given (give exactly one)");
+  }
+  if (has_l) {
+    p.fiber_length_m = o.positive("fiber_length_m");
+  } else {
+    const double alpha_deg = o.number("pitch_angle_deg");
+    require(alpha_deg > 0.0 && alpha_deg < 90.0, o.key("pitch_angle_deg"), alpha_deg,
+            "must lie in (0, 90)");
+    p.fiber_length_m = tca::fiber_length_from_pitch(p.coiled_length_m, units::deg_to_rad(alpha_deg));
+  }
+  p.outer_diameter_m = o.positive("outer_diameter_m");
+  p.twist_turns = o.positive("twist_turns");
+
+  const json& mj = o.required("material");
+  tca::Material material;
+  if (mj.is_string()) {
+    material = load_material(mj.get<std::string>(), o.key("material"));
+  } else if (mj.is_object()) {
+    material = parse_material(mj, o.key("material"));
+  } else {
+    throw InputError(o.key("material"), show(mj),
+                     "must be a shipped material name (string) or an inline material object");
+  }
+  // Default f12 form: the material's, if its source states one, else the consistent
+  // Castigliano factor (docs/conventions.md).
+  p.f12_form = o.has("f12_form") ? parse_f12_form(o)
+                                 : material.f12_form.value_or(tca::F12Form::kCastigliano);
+  try {
+    return std::make_shared<const tca::Tca>(p, std::move(material));
+  } catch (const InputError& e) {
+    throw InputError(join_path(path, e.key()), e.value(), e.rule());
+  }
+}
+
+}  // namespace
+
+tca::PolynomialDegC parse_property(const Obj& o, const std::string& k) {
+  const json& v = o.required(k);
+  tca::PolynomialDegC p;
+  if (v.is_number()) {
+    p.coefficients = {as_number(v, o.key(k))};
+    return p;
+  }
+  if (!v.is_object()) {
+    throw InputError(o.key(k), show(v),
+                     "must be a number or {\"polynomial_degC\": [c0, c1, ...]}");
+  }
+  const Obj po(v, o.key(k), {"polynomial_degC"});
+  const json& c = po.required("polynomial_degC");
+  if (!c.is_array() || c.empty()) {
+    throw InputError(po.key("polynomial_degC"), show(c),
+                     "must be a non-empty array of coefficients [c0, c1, ...]");
+  }
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    p.coefficients.push_back(as_number(c[i], fmt::format("{}[{}]", po.key("polynomial_degC"), i)));
+  }
+  return p;
+}
+
+tca::F12Form parse_f12_form(const Obj& o) {
+  return o.choice("f12_form", {"paper", "castigliano"}) == "paper" ? tca::F12Form::kPaper
+                                                                   : tca::F12Form::kCastigliano;
+}
+
+/// Requires a temperature in degC to lie above absolute zero; returns it in kelvin.
+double above_absolute_zero_K(double t_degC, const std::string& key) {
+  require(t_degC > -units::kZeroCelsius_K, key, t_degC,
+          t_degC < -units::kZeroCelsius_K ? "is below absolute zero"
+                                          : "is not above absolute zero");
+  return units::degC_to_K(t_degC);
+}
+
+/// Checks that E, G and the diameter ratio are positive at `t_K` (a material law that
+/// is not cannot be evaluated there).
+void check_material_positive_at(const tca::Material& m, double t_K, const std::string& key) {
+  const double t_degC = units::K_to_degC(t_K);
+  const double E = m.youngs_modulus_Pa.value(t_K);
+  const double G = m.shear_modulus_Pa.value(t_K);
+  require(E > 0.0, join_path(key, "youngs_modulus_Pa"), E,
+          fmt::format("must be positive (value at {:.10g} degC)", t_degC));
+  require(G > 0.0, join_path(key, "shear_modulus_Pa"), G,
+          fmt::format("must be positive (value at {:.10g} degC)", t_degC));
+  if (m.diameter.type == tca::DiameterLaw::Type::kLinearExpansion) {
+    const double ratio = 1.0 + m.diameter.linear_expansion_1_K * (t_K - m.reference_temperature_K);
+    require(ratio > 0.0, join_path(key, "diameter.linear_expansion_1_K"),
+            m.diameter.linear_expansion_1_K,
+            fmt::format("gives a non-positive diameter ratio {} at {:.10g} degC", ratio, t_degC));
+  } else {
+    const double ratio = m.diameter.ratio_polynomial.value(t_K) /
+                         m.diameter.ratio_polynomial.value(m.reference_temperature_K);
+    require(ratio > 0.0, join_path(key, "diameter.ratio_polynomial_degC"), ratio,
+            fmt::format("is the diameter ratio at {:.10g} degC; it must be positive", t_degC));
+  }
+}
+
+std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j,
+                                                                  const std::string& path,
+                                                                  const std::string& base_dir) {
+  if (!j.is_object()) {
+    throw InputError(path, show(j),
+                     fmt::format("must be a JSON object of named TCAs, not {}", type_name(j)));
+  }
+  std::map<std::string, std::shared_ptr<const tca::Tca>> out;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    require(!it.key().empty(), path, quote(it.key()), "must not contain an empty TCA id");
+    out.emplace(it.key(), parse_tca(it.value(), join_path(path, it.key()), base_dir));
+  }
+  return out;
+}
+
+}  // namespace tcasim::rod::scenario_detail
