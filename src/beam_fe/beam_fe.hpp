@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
@@ -215,10 +216,22 @@ class Discretization {
 /// until the contraction degrades. KLU pivots once and then refactorizes with that pivot order
 /// while its condition estimate holds. Throws InputError for bad options; never throws for
 /// non-convergence: `state` then holds the last accepted configuration.
+///
+/// `loads` replace the model's own (drive tensions and temperatures, tip wrench, gravity;
+/// loads.applied(model) with its load scale; InputError naming the field when they do not fit
+/// the model). A state converged at load factor 1 (for any loads, on the same mesh) is a warm
+/// start: one Newton solve at the new loads, and the ramp from the reference configuration
+/// only if that fails. This is how a sweep runs on the FE: one State across its points.
+Summary solve(const rod::RodModel& model, const rod::Loads& loads, const Options& options, State& state);
+/// Solves the model's own loads: solve(model, rod::Loads::from_model(model), options, state).
 Summary solve(const rod::RodModel& model, const Options& options, State& state);
 
 /// Fills a result file record: method "fe", discretization {elements, order}, tip pose,
-/// actuator tensions and elongations, three-point bending radius, centerline at nodes.
+/// actuator tensions and elongations (coil contact at the segments of `loads`), three-point
+/// bending radius, centerline at nodes.
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
+                        const State& state, const Summary& summary);
+/// make_result with the model's own loads.
 rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
                         const Summary& summary);
 

@@ -231,8 +231,14 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
 }  // namespace
 
 Summary solve(const rod::RodModel& model, const Options& options, State& state) {
+  return solve(model, rod::Loads::from_model(model), options, state);
+}
+
+Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Options& options, State& state) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
+  // The discretization reads the loads from its model: a copy carrying `loads`.
+  const rod::RodModel model = rod::with_loads(model_in, loads);
   const Discretization disc(model, options);  // validates the options
   if (!state_matches(disc, state)) state = disc.reference_state();
   auto finish = [&](Summary& s) -> Summary {
@@ -333,6 +339,13 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
 
 rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
                         const Summary& summary) {
+  return make_result(model, rod::Loads::from_model(model), options, state, summary);
+}
+
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in, const Options& options,
+                        const State& state, const Summary& summary) {
+  loads_in.validate(model);
+  const rod::Loads loads = loads_in.applied(model);
   rod::Result res;
   res.scenario = model.name;
   res.method = "fe";
@@ -352,7 +365,7 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
     a.name = model.actuators[i].name;
     a.tension_N = state.tensions_N[i];
     a.elongation_m = lengths[i] - model.actuators[i].rest_length_m;
-    rod::set_coil_contacts(model.actuators[i], model.actuators[i].drive.segments, a);
+    rod::set_coil_contacts(model.actuators[i], loads.actuators[i].segments, a);
     res.actuators.push_back(std::move(a));
   }
   if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;

@@ -236,27 +236,6 @@ const char* to_string(Summary::Status s) {
   return "unknown";
 }
 
-Actuation Actuation::from_model(const rod::RodModel& model) {
-  Actuation a;
-  a.tip_force_W_N = model.tip_force_W_N;
-  a.tip_moment_W_Nm = model.tip_moment_W_Nm;
-  a.gravity_W_m_s2 = model.gravity_W_m_s2;
-  a.actuators.reserve(model.actuators.size());
-  for (const rod::Actuator& act : model.actuators) {
-    ActuatorDrive d;
-    d.tension_N = act.drive.tension_N;
-    d.segments = act.drive.segments;
-    a.actuators.push_back(std::move(d));
-  }
-  return a;
-}
-
-void Actuation::set_temperature_K(std::size_t index, double t_K) {
-  require(index < actuators.size(), "actuation.actuators index", static_cast<double>(index),
-          "must be < the number of actuators");
-  for (tca::Segment& seg : actuators[index].segments) seg.temperature_K = t_K;
-}
-
 // ---------------------------------------------------------------------------------------
 struct ShootingSolver::Impl {
   const rod::RodModel& model;
@@ -1674,6 +1653,7 @@ ShootingSolver::~ShootingSolver() = default;
 ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
 
 Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
+  if (actuation.load_scale != 1.0) return solve(actuation.applied(impl_->model), solution);
   // The planar reduction needs a planar actuation and, for a warm start, in-plane unknowns
   // (a 3-D equilibrium that left the plane stays a 3-D problem).
   const bool out_of_plane_start = solution.valid && solution.unknowns.size() == impl_->nx &&
@@ -1686,6 +1666,7 @@ Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
 
 rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
                                         const Summary& summary) {
+  if (actuation.load_scale != 1.0) return impl_->make_result(actuation.applied(impl_->model), solution, summary);
   return impl_->make_result(actuation, solution, summary);
 }
 

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "common/ode.hpp"
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "tca/tca.hpp"
@@ -56,24 +57,9 @@ inline constexpr int kC = 18;      ///< int_0^s p_W ds, 3
 inline constexpr int kDelta = 21;  ///< delta_i, one per actuator
 }  // namespace state_layout
 
-/// Actuation of one actuator: which field is read depends on the model's drive type.
-struct ActuatorDrive {
-  double tension_N = 0.0;               ///< tension drive: tension of one string (positive = tensile)
-  std::vector<tca::Segment> segments;   ///< TCA drive: segment fractions and temperatures [K]
-};
-
-/// Everything a sweep or an inverse solver may change without rebuilding the model.
-struct Actuation {
-  std::vector<ActuatorDrive> actuators;  ///< one per model actuator, in model order
-  Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();    ///< applied to the rod at the tip
-  Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();  ///< applied to the rod at the tip
-  Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
-
-  /// The actuation the model file describes.
-  static Actuation from_model(const rod::RodModel& model);
-  /// Sets every segment of TCA actuator `index` to temperature t_K.
-  void set_temperature_K(std::size_t index, double t_K);
-};
+/// The loads of a solve (rod/loads.hpp); the shooting solver's historical names.
+using ActuatorDrive = rod::ActuatorLoad;
+using Actuation = rod::Loads;
 
 /// How the shooting Jacobian dr/dx is obtained.
 enum class JacobianMethod {
@@ -236,7 +222,9 @@ class ShootingSolver {
   /// If that fails and Options::continuation, it steps the load fraction lambda from 0 to 1
   /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))
   /// warm-starting each step, doubling the step after a success and halving it after a
-  /// failure. On return `solution` holds the last accepted (finite) point.
+  /// failure. On return `solution` holds the last accepted (finite) point. A load_scale
+  /// other than 1 solves actuation.applied(model) (rod/loads.hpp); so does make_result. The
+  /// evaluation functions below (initial_guess, residual, ...) ignore load_scale.
   Summary solve(const Actuation& actuation, Solution& solution);
 
   /// Integrates the solution once more with output and fills a result (tip pose,
