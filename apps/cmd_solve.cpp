@@ -258,8 +258,9 @@ void add_sweep_command(CLI::App& app) {
         r = shooting->make_result(loads, solution, summary);
       }
       if (!r.converged) ++failures;
-      fmt::print(os, "{},{},{},{:.6e},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
-                 r.iterations, r.residual, r.tip_position_W_m.x(), r.tip_position_W_m.y(),
+      fmt::print(os, "{},{},{},{},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
+                 r.iterations, r.residual ? fmt::format("{:.6e}", *r.residual) : std::string(),
+                 r.tip_position_W_m.x(), r.tip_position_W_m.y(),
                  r.tip_position_W_m.z(),
                  r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
       for (const auto& a : r.actuators) {

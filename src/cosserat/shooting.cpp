@@ -231,7 +231,7 @@ const char* to_string(Summary::Status s) {
     case Summary::Status::kSingularJacobian: return "singular_jacobian";
     case Summary::Status::kContinuationFailed: return "continuation_failed";
     case Summary::Status::kInitialPointFailed: return "initial_point_failed";
-    case Summary::Status::kUnsupported: return "unsupported";
+    case Summary::Status::kNotRun: return "not_run";
   }
   return "unknown";
 }
@@ -326,18 +326,11 @@ struct ShootingSolver::Impl {
     K_omega_inv = K_omega.cwiseInverse();
     nu_star = Vec3::UnitZ();
     omega_star = model.reference_curvature_B_1_m;
-    const double EI = std::min(K_omega.x(), K_omega.y());
     // The states and unknowns carry nu - nu* (shooting.hpp), so internal forces keep their
     // digits at any stiffness ratio EA L^2 / EI: no stiffness floor. The tip balance sums
     // the applied forces, so its round-off is eps times the largest of them: F_c is the
     // larger of the bending force scale and the model's own loads.
-    double load = std::max(model.tip_force_W_N.norm(), model.tip_moment_W_Nm.norm() / L);
-    load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 *
-                              model.gravity_W_m_s2.norm() * L);
-    for (const rod::Actuator& a : model.actuators) {
-      if (a.drive.type == rod::Drive::Type::kTension) load = std::max(load, a.count * std::abs(a.drive.tension_N));
-    }
-    Fc = std::max(EI / (L * L), load);
+    Fc = rod::characteristic_force_N(model, rod::Loads::from_model(model));
     unknown_of.assign(n_act, -1);
     for (int i = 0; i < n_act; ++i) {
       const rod::Actuator& a = model.actuators[i];
@@ -1341,20 +1334,35 @@ struct ShootingSolver::Impl {
     return y3;
   }
 
+  /// Summary::equilibrium_residual of the scaled residual r at full load.
+  double equilibrium_residual(const Actuation& act, const Eigen::VectorXd& r) const {
+    const double k_c = K_nu.maxCoeff();  // constraint rows hold c . (p - p_target) / L
+    double force = 0.0;
+    for (int i = 0; i < r.size(); ++i) {
+      const bool constraint = n_con > 0 && i >= k_con && i < k_con + n_con;
+      force = std::max(force, std::abs(r[i]) * (constraint ? k_c : Fc));
+    }
+    return force / rod::characteristic_force_N(model, act);
+  }
+
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary) {
     Eigen::VectorXd r;
+    summary.characteristic_force_N = rod::characteristic_force_N(model, act);
+    summary.equilibrium_residual.reset();
     sol.unknowns = x;
     sol.tensions_N.assign(n_act, 0.0);
     sol.elongations_m.assign(n_act, 0.0);
     if (acc_full_load && x_acc.size() == x.size() && x_acc == x) {
       set_parameters(act, 1.0, x);  // no IVP: y(L) of this point is known
       y = y_acc;
+      if (!tip_residual(act, 1.0, x, y, r)) r.resize(0);
     } else if (!residual(act, 1.0, x, r)) {
       // Only the last accepted point of a failed continuation can land here; keep finite zeros.
       sol.tip_state.resize(0);
       return;
     }
     sol.tip_state = y;
+    if (r.size() == nx) summary.equilibrium_residual = equilibrium_residual(act, r);
     for (int i = 0; i < n_act; ++i) {
       sol.tensions_N[i] = cT[i] / count[i];
       sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];
@@ -1531,7 +1539,8 @@ struct ShootingSolver::Impl {
           sol.jacobian.resize(0, 0);
           // Report the residual at the full load for the returned point.
           Eigen::VectorXd r;
-          summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>() : 0.0;
+          summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>()
+                                                       : std::numeric_limits<double>::infinity();
           return done(Summary::Status::kContinuationFailed,
                       "continuation stalled at load fraction " + format_value(lambda) +
                           " (step < " + format_value(options.min_continuation_step) +
@@ -1666,8 +1675,13 @@ Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
 
 rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
                                         const Summary& summary) {
-  if (actuation.load_scale != 1.0) return impl_->make_result(actuation.applied(impl_->model), solution, summary);
-  return impl_->make_result(actuation, solution, summary);
+  rod::Result res = actuation.load_scale != 1.0
+                        ? impl_->make_result(actuation.applied(impl_->model), solution, summary)
+                        : impl_->make_result(actuation, solution, summary);
+  res.status = to_string(summary.status);
+  res.residual = summary.equilibrium_residual;
+  res.characteristic_force_N = summary.characteristic_force_N;
+  return res;
 }
 
 Eigen::VectorXd ShootingSolver::initial_guess(const Actuation& actuation) {

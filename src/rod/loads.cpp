@@ -1,5 +1,6 @@
 #include "rod/loads.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -86,6 +87,20 @@ Loads Loads::applied(const RodModel& model) const {
     for (tca::Segment& seg : a.actuators[i].segments) seg.temperature_K = t_ref + s * (seg.temperature_K - t_ref);
   }
   return a;
+}
+
+double characteristic_force_N(const RodModel& model, const Loads& loads) {
+  const Loads a = loads.applied(model);
+  const double L = model.length_m;
+  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  const double EI = std::min(K_omega.x(), K_omega.y());
+  double load = std::max(a.tip_force_W_N.norm(), a.tip_moment_W_Nm.norm() / L);
+  load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
+  for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
+    const Actuator& act = model.actuators[i];
+    if (act.drive.type == Drive::Type::kTension) load = std::max(load, act.count * std::abs(a.actuators[i].tension_N));
+  }
+  return std::max(EI / (L * L), load);
 }
 
 RodModel with_loads(const RodModel& model, const Loads& loads) {

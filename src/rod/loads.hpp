@@ -46,6 +46,12 @@ struct Loads {
   Loads applied(const RodModel& model) const;
 };
 
+/// Characteristic force F_c [N] of the residual both methods report (docs/scenario-format.md
+/// "residual"), of loads.applied(model): F_c = max(min(E I_x, E I_y) / L^2, |F_e|, |M_e| / L,
+/// rho A |g| L, c_i |T_i| of the tension drives). The shooting solver scales its residual by
+/// F_c of the model's own loads (cosserat/shooting.hpp).
+double characteristic_force_N(const RodModel& model, const Loads& loads);
+
 /// A copy of `model` whose own loads (drive tensions and segments, tip wrench, gravity) are
 /// loads.applied(model); validates the loads first.
 RodModel with_loads(const RodModel& model, const Loads& loads);

@@ -329,9 +329,14 @@ TEST(BeamFeSolver, NonConvergenceIsReportedWithAReasonAndNoNaN) {
   const rod::Result res = make_result(m, opt, s.state, s.summary);
   EXPECT_FALSE(res.converged);
   EXPECT_TRUE(res.tip_position_W_m.allFinite());
-  EXPECT_TRUE(std::isfinite(res.residual));
+  // The residual of the returned state, not 0 (which would read as perfect equilibrium).
+  ASSERT_TRUE(res.residual.has_value());
+  EXPECT_TRUE(std::isfinite(*res.residual));
+  EXPECT_GT(*res.residual, 0.0);
+  EXPECT_EQ(res.status, "load_step_limit");  // max_load_steps = 4 attempts
   const nlohmann::json j = rod::to_json(res);
   EXPECT_FALSE(j.at("converged").get<bool>());
+  EXPECT_EQ(j.at("status"), "load_step_limit");
 }
 
 }  // namespace
@@ -466,7 +471,9 @@ TEST(BeamFeSolver, SweepPointWarmStartedAcrossLoadChangesEqualsAColdSolveOfTheSa
     for (std::size_t i = 0; i < m.actuators.size(); ++i) {
       EXPECT_NEAR(sweep.tensions_N[i], cold.tensions_N[i], kSameSolution * std::abs(cold.tensions_N[i]));
     }
-    if (t_degC > 40.0) EXPECT_EQ(warm.load_steps, 1) << "a warm point is one Newton solve at full load";
+    if (t_degC > 40.0) {
+      EXPECT_EQ(warm.load_steps, 1) << "a warm point is one Newton solve at full load";
+    }
     // The sweep's result reads the coil contact at the sweep's temperatures.
     const rod::Result res = make_result(m, loads, opt, sweep, warm);
     EXPECT_EQ(res.actuators.size(), m.actuators.size());
@@ -508,6 +515,29 @@ TEST(BeamFeSolver, LoadsThatDoNotFitTheModelAreAnInputErrorNamingTheField) {
   loads = rod::Loads::from_model(m);
   loads.load_scale = 1.5;
   EXPECT_THROW(solve(m, loads, options(4, 2), state), InputError);
+}
+
+TEST(BeamFeSolver, ADefaultSummarySaysItWasNeverRun) {
+  const Summary none;
+  EXPECT_EQ(none.status, Summary::Status::kNotRun);
+  EXPECT_STREQ(to_string(none.status), "not_run");
+  EXPECT_FALSE(none.equilibrium_residual.has_value());
+}
+
+TEST(BeamFeSolver, CommonResidualOfAConvergedSolveIsWithinItsTolerance) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  const Options opt = options(8, 2);
+  const Solved s = run(m, opt);
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  EXPECT_EQ(s.summary.characteristic_force_N, rod::characteristic_force_N(m, rod::Loads::from_model(m)));
+  ASSERT_TRUE(s.summary.equilibrium_residual.has_value());
+  // Every row is within tolerance_abs + tolerance_rel scale + floor; over F_c that is far below 1e-6.
+  EXPECT_LT(*s.summary.equilibrium_residual, 1e-6);
+  EXPECT_LE(*s.summary.equilibrium_residual * s.summary.characteristic_force_N,
+            s.summary.residual_inf / std::min(1.0, m.length_m));
+  const rod::Result res = make_result(m, opt, s.state, s.summary);
+  EXPECT_EQ(res.status, "converged");
+  EXPECT_EQ(res.residual, s.summary.equilibrium_residual);
 }
 
 }  // namespace

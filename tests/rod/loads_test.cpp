@@ -81,5 +81,28 @@ TEST(Loads, ValidateNamesTheFieldThatDoesNotFitTheModel) {
   EXPECT_THROW(l.validate(m), InputError);
 }
 
+TEST(Loads, CharacteristicForceIsTheLargerOfTheBendingScaleAndTheLargestLoad) {
+  RodModel m = two_actuator_model();
+  const double L = m.length_m;
+  const double EI = m.bending_torsion_stiffness().head<2>().minCoeff();
+  Loads l = Loads::from_model(m);
+  l.tip_force_W_N.setZero();
+  l.tip_moment_W_Nm.setZero();
+  l.gravity_W_m_s2.setZero();
+  l.set_tension_N(1, 0.0);
+  EXPECT_EQ(characteristic_force_N(m, l), EI / (L * L));
+  l.set_tension_N(1, -5.0);  // c |T| of a tension drive (the TCA's tension is an unknown)
+  EXPECT_EQ(characteristic_force_N(m, l), 5.0);
+  l.tip_moment_W_Nm = {0.0, 0.0, 7.0 * L};
+  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), 7.0);
+  l.tip_force_W_N = {0.0, 8.0, 0.0};
+  EXPECT_EQ(characteristic_force_N(m, l), 8.0);
+  l.load_scale = 0.5;  // of the applied loads
+  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), 4.0);
+  l = Loads::from_model(m);
+  l.gravity_W_m_s2 = {0.0, 0.0, -1e6};
+  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), m.material.density_kg_m3 * m.section.area_m2 * 1e6 * L);
+}
+
 }  // namespace
 }  // namespace tcasim::rod
