@@ -90,7 +90,8 @@ Loads Loads::applied(const RodModel& model) const {
 }
 
 double characteristic_force_N(const RodModel& model, const Loads& loads) {
-  const Loads a = loads.applied(model);
+  if (loads.load_scale != 1.0) return characteristic_force_N(model, loads.applied(model));
+  const Loads& a = loads;  // no copy: called once per solve by both solvers
   const double L = model.length_m;
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   const double EI = std::min(K_omega.x(), K_omega.y());
