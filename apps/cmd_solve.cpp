@@ -16,6 +16,7 @@
 #include "common/progress.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
@@ -157,8 +158,9 @@ void add_solve_command(CLI::App& app) {
 
 void add_sweep_command(CLI::App& app) {
   struct Flags {
-    std::string scenario, actuator, temperatures, tensions, out;
+    std::string scenario, actuator, temperatures, tensions, out, method = "cosserat";
     IntegratorFlags integrator;
+    FeFlags fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
@@ -169,7 +171,12 @@ void add_sweep_command(CLI::App& app) {
                                 "TCA temperatures START:STOP:STEP [degC] (every segment)");
   auto* tens = cmd->add_option("--tensions-N", flags->tensions, "tensions START:STOP:STEP [N] (tension drive)");
   temps->excludes(tens);
+  cmd->add_option("--method", flags->method,
+                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements); "
+                  "both warm-start each point from the previous one")
+      ->check(CLI::IsMember({"cosserat", "fe"}));
   add_integrator_flags(cmd, flags->integrator);
+  add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
   cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
@@ -204,9 +211,18 @@ void add_sweep_command(CLI::App& app) {
       }
     }
 
-    cosserat::ShootingSolver solver(model, cosserat_options(flags->integrator));
-    cosserat::Actuation actuation = cosserat::Actuation::from_model(model);
+    // One solver per method, each warm-starting every point from the previous one.
+    const bool fe = flags->method == "fe";
+    std::optional<cosserat::ShootingSolver> shooting;
+    std::optional<beam_fe::Options> fe_opts;
+    if (fe) {
+      fe_opts = fe_options(flags->fe);
+    } else {
+      shooting.emplace(model, cosserat_options(flags->integrator));
+    }
+    rod::Loads loads = rod::Loads::from_model(model);
     cosserat::Solution solution;
+    beam_fe::State fe_state;
     Output out(flags->out);
     std::ostream& os = out.stream();
     fmt::print(os, "{},converged,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m",
@@ -229,15 +245,22 @@ void add_sweep_command(CLI::App& app) {
     int failures = 0;
     for (std::size_t k = 0; k < values.size(); ++k) {
       if (by_temperature) {
-        actuation.set_temperature_K(index, units::degC_to_K(values[k]));
+        loads.set_temperature_K(index, units::degC_to_K(values[k]));
       } else {
-        actuation.actuators[index].tension_N = values[k];
+        loads.set_tension_N(index, values[k]);
       }
-      const cosserat::Summary summary = solver.solve(actuation, solution);
-      const rod::Result r = solver.make_result(actuation, solution, summary);
+      rod::Result r;
+      if (fe) {
+        const beam_fe::Summary summary = beam_fe::solve(model, loads, *fe_opts, fe_state);
+        r = beam_fe::make_result(model, loads, *fe_opts, fe_state, summary);
+      } else {
+        const cosserat::Summary summary = shooting->solve(loads, solution);
+        r = shooting->make_result(loads, solution, summary);
+      }
       if (!r.converged) ++failures;
-      fmt::print(os, "{},{},{},{:.6e},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
-                 r.iterations, r.residual, r.tip_position_W_m.x(), r.tip_position_W_m.y(),
+      fmt::print(os, "{},{},{},{},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
+                 r.iterations, r.residual ? fmt::format("{:.6e}", *r.residual) : std::string(),
+                 r.tip_position_W_m.x(), r.tip_position_W_m.y(),
                  r.tip_position_W_m.z(),
                  r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
       for (const auto& a : r.actuators) {

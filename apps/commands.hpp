@@ -13,7 +13,7 @@ void add_fit_command(CLI::App& app);
 
 /// `tcasim solve SCENARIO [--method cosserat|fe] [--steps N | --rtol X] [--elements N --order 1|2] [--out F]`
 void add_solve_command(CLI::App& app);
-/// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S)`
+/// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S) [--method cosserat|fe]`
 void add_sweep_command(CLI::App& app);
 
 /// `tcasim inverse SCENARIO --target-m X,Y,Z [--actuators a,b] [--max-temperature-degC T] [--out F]`

@@ -18,9 +18,11 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
@@ -74,19 +76,30 @@ struct Summary {
     kConverged,
     kStepTooSmall,       ///< a load increment halved below Options::min_load_step failed
     kLoadStepLimit,      ///< Options::max_load_steps attempts without reaching lambda = 1
-    kNotSupported,       ///< the model asks for something this solver cannot do (none at present)
+    kNotRun,             ///< a default-constructed summary: no solve filled it
   };
-  Status status = Status::kStepTooSmall;
+  Status status = Status::kNotRun;
   bool converged() const { return status == Status::kConverged; }
   int load_steps = 0;          ///< accepted load steps
   int rejected_steps = 0;      ///< failed (halved) load steps
   int iterations = 0;          ///< Newton and chord iterations (linear solves), all steps
-  double residual_inf = 0.0;   ///< ||r||_inf of the returned state
+  /// ||r||_inf of the returned state at its load factor [N, N m] (+inf when it cannot be
+  /// evaluated there).
+  double residual_inf = 0.0;
   double residual_scale = 0.0; ///< scale of the relative tolerance
+  /// The residual both methods report (rod::Result::residual, docs/scenario-format.md): at
+  /// the returned state and load factor 1, max_i |r_i| / F_c over the force, TCA and
+  /// constraint rows and max |r_i| / (L F_c) over the moment rows, F_c =
+  /// characteristic_force_N; empty when the residual cannot be evaluated there (or no solve ran).
+  std::optional<double> equilibrium_residual;
+  double characteristic_force_N = 0.0;  ///< F_c of the solve's loads (rod::characteristic_force_N)
   double load_factor = 0.0;    ///< lambda reached
   double wall_time_s = 0.0;
   std::string message;         ///< why it stopped (empty when converged)
 };
+
+/// "converged", "step_too_small", "load_step_limit" or "not_run".
+const char* to_string(Summary::Status s);
 
 /// Element-level quantities (for tests): residual and consistent tangent in the
 /// element's nodal increments (dp_a, dtheta_a) per node, strings at fixed tensions.
@@ -214,10 +227,22 @@ class Discretization {
 /// until the contraction degrades. KLU pivots once and then refactorizes with that pivot order
 /// while its condition estimate holds. Throws InputError for bad options; never throws for
 /// non-convergence: `state` then holds the last accepted configuration.
+///
+/// `loads` replace the model's own (drive tensions and temperatures, tip wrench, gravity;
+/// loads.applied(model) with its load scale; InputError naming the field when they do not fit
+/// the model). A state converged at load factor 1 (for any loads, on the same mesh) is a warm
+/// start: one Newton solve at the new loads, and the ramp from the reference configuration
+/// only if that fails. This is how a sweep runs on the FE: one State across its points.
+Summary solve(const rod::RodModel& model, const rod::Loads& loads, const Options& options, State& state);
+/// Solves the model's own loads: solve(model, rod::Loads::from_model(model), options, state).
 Summary solve(const rod::RodModel& model, const Options& options, State& state);
 
 /// Fills a result file record: method "fe", discretization {elements, order}, tip pose,
-/// actuator tensions and elongations, three-point bending radius, centerline at nodes.
+/// actuator tensions and elongations (coil contact at the segments of `loads`), three-point
+/// bending radius, centerline at nodes.
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
+                        const State& state, const Summary& summary);
+/// make_result with the model's own loads.
 rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
                         const Summary& summary);
 

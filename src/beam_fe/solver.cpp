@@ -140,6 +140,7 @@ struct StepResult {
   double residual_inf = 0.0;
   double scale = 0.0;
   std::string why;
+  VectorXd residual;  ///< r at the converged state (empty otherwise)
 };
 
 /// The residual (and tangent); false where the state leaves the model's domain (a
@@ -170,6 +171,7 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
     out.scale = disc.residual_scale(st, lambda);
     if (disc.within_tolerance(r, st, lambda, options)) {
       out.converged = true;
+      out.residual = std::move(r);
       return out;
     }
     if (it == options.max_iterations) {
@@ -228,11 +230,39 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
   }
 }
 
+/// Summary::equilibrium_residual of the residual r at load factor 1.
+double equilibrium_residual(const Discretization& disc, const VectorXd& r, double F_c) {
+  const int free_dofs = 6 * (disc.node_count() - 1);
+  const double L = disc.model().length_m;
+  double force = 0.0;
+  for (int i = 0; i < r.size(); ++i) {
+    const bool moment_row = i < free_dofs && i % 6 >= 3;
+    force = std::max(force, std::abs(r[i]) / (moment_row ? L : 1.0));
+  }
+  return force / F_c;
+}
+
 }  // namespace
 
+const char* to_string(Summary::Status s) {
+  switch (s) {
+    case Summary::Status::kConverged: return "converged";
+    case Summary::Status::kStepTooSmall: return "step_too_small";
+    case Summary::Status::kLoadStepLimit: return "load_step_limit";
+    case Summary::Status::kNotRun: return "not_run";
+  }
+  return "unknown";
+}
+
 Summary solve(const rod::RodModel& model, const Options& options, State& state) {
+  return solve(model, rod::Loads::from_model(model), options, state);
+}
+
+Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Options& options, State& state) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
+  // The discretization reads the loads from its model: a copy carrying `loads`.
+  const rod::RodModel model = rod::with_loads(model_in, loads);
   const Discretization disc(model, options);  // validates the options
   if (!state_matches(disc, state)) state = disc.reference_state();
   auto finish = [&](Summary& s) -> Summary {
@@ -319,10 +349,17 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
     }
   }
   summary.load_factor = lambda;
-  if (!summary.converged()) {
+  summary.characteristic_force_N = rod::characteristic_force_N(model, rod::Loads::from_model(model));
+  if (summary.converged()) {
+    summary.equilibrium_residual = equilibrium_residual(disc, last.residual, summary.characteristic_force_N);
+  } else {
     // Report the residual of the returned (last accepted) state at its load factor.
     VectorXd r;
-    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r) ? r.lpNorm<Eigen::Infinity>() : 0.0;
+    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r) ? r.lpNorm<Eigen::Infinity>()
+                                                                             : std::numeric_limits<double>::infinity();
+    if (evaluate(disc, state, 1.0, nullptr, r)) {
+      summary.equilibrium_residual = equilibrium_residual(disc, r, summary.characteristic_force_N);
+    }
     summary.residual_scale = disc.residual_scale(state, state.load_factor);
     if (!summary.message.empty() && summary.load_steps == 0 && state.load_factor == 0.0) {
       summary.message += " (no load step converged; the state is the reference configuration)";
@@ -333,13 +370,22 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
 
 rod::Result make_result(const rod::RodModel& model, const Options& options, const State& state,
                         const Summary& summary) {
+  return make_result(model, rod::Loads::from_model(model), options, state, summary);
+}
+
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in, const Options& options,
+                        const State& state, const Summary& summary) {
+  loads_in.validate(model);
+  const rod::Loads loads = loads_in.applied(model);
   rod::Result res;
   res.scenario = model.name;
   res.method = "fe";
   res.discretization = {{"elements", options.elements}, {"order", options.order}};
   res.converged = summary.converged();
+  res.status = to_string(summary.status);
   res.iterations = summary.iterations;
-  res.residual = summary.residual_inf;
+  res.residual = summary.equilibrium_residual;
+  res.characteristic_force_N = summary.characteristic_force_N;
   res.wall_time_s = summary.wall_time_s;
   res.message = summary.message;
   if (state.p_W_m.empty()) return res;
@@ -352,7 +398,7 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
     a.name = model.actuators[i].name;
     a.tension_N = state.tensions_N[i];
     a.elongation_m = lengths[i] - model.actuators[i].rest_length_m;
-    rod::set_coil_contacts(model.actuators[i], model.actuators[i].drive.segments, a);
+    rod::set_coil_contacts(model.actuators[i], loads.actuators[i].segments, a);
     res.actuators.push_back(std::move(a));
   }
   if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;

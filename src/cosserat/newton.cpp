@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "common/error.hpp"
@@ -195,7 +196,8 @@ Summary::Status ShootingSolver::Impl::continuation(const Actuation& act, Eigen::
       if (step < options.min_continuation_step) {
         // Report the residual at the full load for the returned point.
         Eigen::VectorXd r;
-        summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>() : 0.0;
+        summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>()
+                                                       : std::numeric_limits<double>::infinity();
         why = "continuation stalled at load fraction " + format_value(lambda) + " (step < " +
               format_value(options.min_continuation_step) + "): " + why;
         x = xc;

@@ -28,30 +28,9 @@ const char* to_string(Summary::Status s) {
     case Summary::Status::kSingularJacobian: return "singular_jacobian";
     case Summary::Status::kContinuationFailed: return "continuation_failed";
     case Summary::Status::kInitialPointFailed: return "initial_point_failed";
-    case Summary::Status::kUnsupported: return "unsupported";
+    case Summary::Status::kNotRun: return "not_run";
   }
   return "unknown";
-}
-
-Actuation Actuation::from_model(const rod::RodModel& model) {
-  Actuation a;
-  a.tip_force_W_N = model.tip_force_W_N;
-  a.tip_moment_W_Nm = model.tip_moment_W_Nm;
-  a.gravity_W_m_s2 = model.gravity_W_m_s2;
-  a.actuators.reserve(model.actuators.size());
-  for (const rod::Actuator& act : model.actuators) {
-    ActuatorDrive d;
-    d.tension_N = act.drive.tension_N;
-    d.segments = act.drive.segments;
-    a.actuators.push_back(std::move(d));
-  }
-  return a;
-}
-
-void Actuation::set_temperature_K(std::size_t index, double t_K) {
-  require(index < actuators.size(), "actuation.actuators index", static_cast<double>(index),
-          "must be < the number of actuators");
-  for (tca::Segment& seg : actuators[index].segments) seg.temperature_K = t_K;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -184,21 +163,36 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
   return done(st, why, x);
 }
 
+double ShootingSolver::Impl::equilibrium_residual(const Actuation& act,
+                                                  const Eigen::VectorXd& r) const {
+  const double k_c = K_nu.maxCoeff();  // constraint rows hold c . (p - p_target) / L
+  double force = 0.0;
+  for (int i = 0; i < r.size(); ++i) {
+    const bool constraint = n_con > 0 && i >= k_con && i < k_con + n_con;
+    force = std::max(force, std::abs(r[i]) * (constraint ? k_c : Fc));
+  }
+  return force / rod::characteristic_force_N(model, act);
+}
+
 void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol,
                                   Summary& summary) {
   Eigen::VectorXd r;
+  summary.characteristic_force_N = rod::characteristic_force_N(model, act);
+  summary.equilibrium_residual.reset();
   sol.unknowns = x;
   sol.tensions_N.assign(n_act, 0.0);
   sol.elongations_m.assign(n_act, 0.0);
   if (acc_full_load && x_acc.size() == x.size() && x_acc == x) {
     set_parameters(act, 1.0, x);  // no IVP: y(L) of this point is known
     y = y_acc;
+    if (!tip_residual(act, 1.0, x, y, r)) r.resize(0);
   } else if (!residual(act, 1.0, x, r)) {
     // Only the last accepted point of a failed continuation can land here; keep finite zeros.
     sol.tip_state.resize(0);
     return;
   }
   sol.tip_state = y;
+  if (r.size() == nx) summary.equilibrium_residual = equilibrium_residual(act, r);
   for (int i = 0; i < n_act; ++i) {
     sol.tensions_N[i] = cT[i] / count[i];
     sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];
@@ -285,6 +279,7 @@ ShootingSolver::~ShootingSolver() = default;
 ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
 
 Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
+  if (actuation.load_scale != 1.0) return solve(actuation.applied(impl_->model), solution);
   // The planar reduction needs a planar actuation and, for a warm start, in-plane unknowns
   // (a 3-D equilibrium that left the plane stays a 3-D problem).
   const bool out_of_plane_start = solution.valid && solution.unknowns.size() == impl_->nx &&
@@ -297,7 +292,13 @@ Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
 
 rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
                                         const Summary& summary) {
-  return impl_->make_result(actuation, solution, summary);
+  rod::Result res = actuation.load_scale != 1.0
+                        ? impl_->make_result(actuation.applied(impl_->model), solution, summary)
+                        : impl_->make_result(actuation, solution, summary);
+  res.status = to_string(summary.status);
+  res.residual = summary.equilibrium_residual;
+  res.characteristic_force_N = summary.characteristic_force_N;
+  return res;
 }
 
 Eigen::VectorXd ShootingSolver::initial_guess(const Actuation& actuation) {

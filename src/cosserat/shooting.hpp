@@ -25,8 +25,9 @@
 ///   r[6+k] = phi_k( T_k, delta_k(L) ) / F_c, phi_k = T_k - F_tca(delta_k(L), temperatures_k)
 ///            with coil contact (tca::contact_residual; docs/conventions.md "Closed coils")
 /// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, the model's own largest
-/// load: |F_e|, |M_e| / L, the weight rho A |g| L, c_i |T_i| of tension drives), fixed when
-/// the solver is built. The force residual is K_nu e to the relative precision of e, so the
+/// load: |F_e|, |M_e| / L, the weight rho A |g| L, c_i |T_i| of tension drives;
+/// rod::characteristic_force_N of the model's own loads), fixed when the solver is built.
+/// Summaries also report the residual both methods share (Summary::equilibrium_residual). The force residual is K_nu e to the relative precision of e, so the
 /// scale needs no stiffness floor; its round-off is eps times the largest load it sums.
 /// Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
@@ -36,10 +37,12 @@
 /// the layouts above.
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/ode.hpp"
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "tca/tca.hpp"
@@ -56,24 +59,9 @@ inline constexpr int kC = 18;      ///< int_0^s p_W ds, 3
 inline constexpr int kDelta = 21;  ///< delta_i, one per actuator
 }  // namespace state_layout
 
-/// Actuation of one actuator: which field is read depends on the model's drive type.
-struct ActuatorDrive {
-  double tension_N = 0.0;               ///< tension drive: tension of one string (positive = tensile)
-  std::vector<tca::Segment> segments;   ///< TCA drive: segment fractions and temperatures [K]
-};
-
-/// Everything a sweep or an inverse solver may change without rebuilding the model.
-struct Actuation {
-  std::vector<ActuatorDrive> actuators;  ///< one per model actuator, in model order
-  Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();    ///< applied to the rod at the tip
-  Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();  ///< applied to the rod at the tip
-  Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
-
-  /// The actuation the model file describes.
-  static Actuation from_model(const rod::RodModel& model);
-  /// Sets every segment of TCA actuator `index` to temperature t_K.
-  void set_temperature_K(std::size_t index, double t_K);
-};
+/// The loads of a solve (rod/loads.hpp); the shooting solver's historical names.
+using ActuatorDrive = rod::ActuatorLoad;
+using Actuation = rod::Loads;
 
 /// How the shooting Jacobian dr/dx is obtained.
 enum class JacobianMethod {
@@ -161,14 +149,22 @@ struct Summary {
     kContinuationFailed, ///< the direct solve failed and the continuation step fell below
                          ///< Options::min_continuation_step (or the unloaded solve failed)
     kInitialPointFailed, ///< the IVP or a TCA law failed at the initial guess
-    kUnsupported,        ///< the model asks for something this solver does not do
+    kNotRun,             ///< a default-constructed summary: no solve filled it
   };
-  Status status = Status::kInitialPointFailed;
-  int iterations = 0;          ///< Newton iterations over all continuation steps
+  Status status = Status::kNotRun;
+  int iterations = 0;          ///< Newton iterations over all levels and continuation steps
   int ivp_count = 0;           ///< IVP integrations (all levels; an augmented sensitivity
                                ///< IVP counts once, an FD Jacobian nx times)
   int continuation_steps = 0;  ///< 0 when the direct solve converged
-  double residual = 0.0;       ///< ||r_scaled||_inf at the returned point (finite)
+  /// ||r_scaled||_inf (the scaling above, at the last Newton point; at the full load for the
+  /// returned point after a failed continuation, +inf if the IVP or a TCA law fails there).
+  double residual = 0.0;
+  /// The residual both methods report (rod::Result::residual, docs/scenario-format.md): the
+  /// largest unbalanced force of the tip conditions at the returned point and the full load
+  /// (force and TCA rows F_c r, moment rows F_c L r / L, tip-constraint rows max(EA, GA) r)
+  /// over characteristic_force_N; empty when the IVP or a TCA law fails there or no solve ran.
+  std::optional<double> equilibrium_residual;
+  double characteristic_force_N = 0.0;  ///< F_c of the solve's loads (rod::characteristic_force_N)
   double wall_time_s = 0.0;
   std::string message;         ///< empty when converged
   /// Global equilibrium: n(0) and m(0) (about p(0)) minus what the applied loads
@@ -236,7 +232,9 @@ class ShootingSolver {
   /// If that fails and Options::continuation, it steps the load fraction lambda from 0 to 1
   /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))
   /// warm-starting each step, doubling the step after a success and halving it after a
-  /// failure. On return `solution` holds the last accepted (finite) point.
+  /// failure. On return `solution` holds the last accepted (finite) point. A load_scale
+  /// other than 1 solves actuation.applied(model) (rod/loads.hpp); so does make_result. The
+  /// evaluation functions below (initial_guess, residual, ...) ignore load_scale.
   Summary solve(const Actuation& actuation, Solution& solution);
 
   /// Integrates the solution once more with output and fills a result (tip pose,

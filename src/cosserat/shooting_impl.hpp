@@ -41,6 +41,8 @@ struct ShootingSolver::Impl : internal::TipConditions {
   Summary solve(const Actuation& act, Solution& sol);
   /// Sets sol's unknowns, tensions, elongations and tip state at x (full load) and the
   /// summary's global equilibrium (3-D only).
+  /// Summary::equilibrium_residual of the scaled residual r at full load.
+  double equilibrium_residual(const Actuation& act, const Eigen::VectorXd& r) const;
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
   rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
 

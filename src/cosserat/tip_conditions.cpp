@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "rod/loads.hpp"
 #include "cosserat/planar.hpp"
 
 namespace tcasim::cosserat::internal {
@@ -12,18 +13,11 @@ using namespace state_layout;
 
 TipConditions::TipConditions(const rod::RodModel& m, bool planar_layout, bool sensitivities)
     : RodRhs(m, planar_layout, sensitivities) {
-  const double EI = std::min(K_omega.x(), K_omega.y());
   // The states and unknowns carry nu - nu* (shooting.hpp), so internal forces keep their
   // digits at any stiffness ratio EA L^2 / EI: no stiffness floor. The tip balance sums
   // the applied forces, so its round-off is eps times the largest of them: F_c is the
   // larger of the bending force scale and the model's own loads.
-  double load = std::max(model.tip_force_W_N.norm(), model.tip_moment_W_Nm.norm() / L);
-  load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 *
-                            model.gravity_W_m_s2.norm() * L);
-  for (const rod::Actuator& a : model.actuators) {
-    if (a.drive.type == rod::Drive::Type::kTension) load = std::max(load, a.count * std::abs(a.drive.tension_N));
-  }
-  Fc = std::max(EI / (L * L), load);
+  Fc = rod::characteristic_force_N(model, rod::Loads::from_model(model));
   dphi_dT.assign(n_act, 0.0);
   dphi_ddelta.assign(n_act, 0.0);
 }

@@ -41,7 +41,7 @@ const char* fe_status_name(beam_fe::Summary::Status s) {
     case beam_fe::Summary::Status::kConverged: return "converged";
     case beam_fe::Summary::Status::kStepTooSmall: return "step too small";
     case beam_fe::Summary::Status::kLoadStepLimit: return "load-step limit";
-    case beam_fe::Summary::Status::kNotSupported: return "not supported";
+    case beam_fe::Summary::Status::kNotRun: return "not run";
   }
   return "unknown";
 }
@@ -107,37 +107,12 @@ std::size_t expected_scenarios(const std::string& dir, const std::vector<std::st
   return std::max(only.empty() ? scenario_files(dir).size() : only.size(), minimum);
 }
 
-std::optional<std::string> unsupported_reason(const rod::RodModel& model) {
-  // The cheapest solves of each solver: an unsupported feature is reported before any work.
-  beam_fe::Summary::Status fe_status{};
-  const Run fe = solve_fe_impl(model, FeSettings{1, 1, 1e-12, 1e-10}, &fe_status);
-  cosserat::Options options;
-  options.integrator.steps = 2;
-  options.coarse_steps = 0;
-  options.continuation = false;
-  options.max_iterations = 1;
-  cosserat::Summary::Status shooting_status{};
-  const Run shooting = solve_shooting(model, options, &shooting_status);
-  std::string why;
-  if (fe_status == beam_fe::Summary::Status::kNotSupported) why += "fe: " + fe.result.message;
-  if (shooting_status == cosserat::Summary::Status::kUnsupported) {
-    why += (why.empty() ? "" : "; ") + std::string("cosserat: ") + shooting.result.message;
-  }
-  if (why.empty()) return std::nullopt;
-  return why;
-}
-
 std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
-                                      std::vector<std::pair<std::string, std::string>>& skipped) {
+                                      std::vector<std::pair<std::string, std::string>>& /*skipped*/) {
   std::vector<rod::RodModel> models;
   for (const auto& path : scenario_files(dir)) {
     rod::RodModel model = rod::read_scenario(path);
     if (!only.empty() && std::find(only.begin(), only.end(), model.name) == only.end()) continue;
-    if (auto why = unsupported_reason(model)) {
-      skipped.emplace_back(model.name, *why);
-      fmt::print("  not run {}: {}\n", model.name, *why);
-      continue;
-    }
     fmt::print("  {} (L = {} m)\n", model.name, model.length_m);
     models.push_back(std::move(model));
   }

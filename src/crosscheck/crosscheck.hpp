@@ -35,13 +35,9 @@ constexpr std::size_t kShippedSuiteScenarios = 16;
 /// when it is not empty, else the `tcasim.scenario/1` files of `dir`, and at least `minimum`.
 std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only, std::size_t minimum);
 
-/// Why a model cannot be cross-checked, read from the solvers' own statuses (a cheap
-/// solve with each; FE kNotSupported or shooting kUnsupported); none when both support it.
-std::optional<std::string> unsupported_reason(const rod::RodModel& model);
-
 /// The suite: the scenario files of `dir` (restricted to the names in `only` when it is not
-/// empty) that both solvers support; the others are listed in `skipped` (name, reason), for
-/// the program to report as not run (Gates::not_run).
+/// empty); both solvers solve every scenario, so `skipped` (name, reason; for the program to
+/// report as not run, Gates::not_run) is left as it is.
 /// Prints one line per scenario.
 std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
                                       std::vector<std::pair<std::string, std::string>>& skipped);

@@ -82,8 +82,6 @@ struct Actuator {
   /// to get the elongation: the reference path length int_0^L |e3 + omega* x r + r'| ds
   /// (rod/reference_path.hpp), less pre_elongation_m for a TCA drive.
   double rest_length_m = 0.0;
-  /// L_i of Eq. (18): rest_length_m / body length.
-  double length_ratio = 1.0;
 };
 
 /// Tip held at a world point: fully (pinned), or only along a contact normal.

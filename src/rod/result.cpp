@@ -102,7 +102,8 @@ nlohmann::json to_json(const Result& result) {
   }
   j["discretization"] = disc;
   j["iterations"] = result.iterations;
-  j["residual"] = w.number(result.residual, "residual");
+  j["residual"] = result.residual ? w.number(*result.residual, "residual") : json(nullptr);
+  j["characteristic_force_N"] = w.number(result.characteristic_force_N, "characteristic_force_N");
   j["wall_time_s"] = w.number(result.wall_time_s, "wall_time_s");
 
   json rotation = json::array();
@@ -172,6 +173,8 @@ nlohmann::json to_json(const Result& result) {
     message = message.empty() ? note : message + "; " + note;
   }
   j["converged"] = converged;
+  // A converged solve whose result holds a non-finite number is not reported as converged.
+  j["status"] = converged || result.status != "converged" ? result.status : std::string("non_finite_result");
   if (!converged) {
     j["message"] = message.empty() ? std::string("the solver did not converge (no reason given)")
                                    : message;

@@ -36,8 +36,17 @@ struct Result {
   /// Discretization as key/value pairs, e.g. {{"steps", 100}} or {{"elements", 32}, {"order", 2}}.
   std::vector<std::pair<std::string, double>> discretization;
   bool converged = false;
+  /// "converged", or the solver's reason for stopping (docs/scenario-format.md); "not_run"
+  /// for a result no solve filled.
+  std::string status = "not_run";
+  /// Iterations of the solve: shooting, Newton iterations over all levels and continuation
+  /// steps; FE, Newton and chord iterations (linear solves) over all load steps.
   int iterations = 0;
-  double residual = 0.0;
+  /// The residual both methods report (docs/scenario-format.md "residual"): the largest
+  /// unbalanced force at the returned state and the full loads (moments divided by L) over
+  /// characteristic_force_N; empty when it could not be evaluated (written as null).
+  std::optional<double> residual;
+  double characteristic_force_N = 0.0;  ///< F_c [N] (rod::characteristic_force_N)
   double wall_time_s = 0.0;
   std::string message;  ///< why it did not converge (empty when converged)
 

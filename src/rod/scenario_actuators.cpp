@@ -215,8 +215,6 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
     a.pre_elongation_m = o.number("pre_elongation_m");
   }
   a.rest_length_m = rest_length(o, a, model);
-  // [Pawlowski2019] Eq. (18): L_i = rest length / body length.
-  a.length_ratio = a.rest_length_m / model.length_m;
   return a;
 }
 

@@ -317,9 +317,14 @@ TEST(BeamFeSolver, NonConvergenceIsReportedWithAReasonAndNoNaN) {
   const rod::Result res = make_result(m, opt, s.state, s.summary);
   EXPECT_FALSE(res.converged);
   EXPECT_TRUE(res.tip_position_W_m.allFinite());
-  EXPECT_TRUE(std::isfinite(res.residual));
+  // The residual of the returned state, not 0 (which would read as perfect equilibrium).
+  ASSERT_TRUE(res.residual.has_value());
+  EXPECT_TRUE(std::isfinite(*res.residual));
+  EXPECT_GT(*res.residual, 0.0);
+  EXPECT_EQ(res.status, "load_step_limit");  // max_load_steps = 4 attempts
   const nlohmann::json j = rod::to_json(res);
   EXPECT_FALSE(j.at("converged").get<bool>());
+  EXPECT_EQ(j.at("status"), "load_step_limit");
 }
 
 }  // namespace
@@ -410,6 +415,117 @@ TEST(BeamFeSolver, WarmStartFromAnotherTemperatureConvergesToTheColdStartSolutio
   const Solved cold = run(hot, opt);
   // Both converged to tolerance_rel 1e-12 of the load scale.
   EXPECT_LT((warm.state.p_W_m.back() - cold.state.p_W_m.back()).norm(), 1e-10 * hot.length_m);
+}
+
+}  // namespace
+}  // namespace tcasim::beam_fe
+
+namespace tcasim::beam_fe {
+namespace {
+
+/// Two converged solves of the same loads (tolerance_rel 1e-12 of the load scale) agree
+/// to about 1e-12 of L; 1e-10 L leaves room for the conditioning of the tip position.
+constexpr double kSameSolution = 1e-10;
+
+TEST(BeamFeSolver, ModelLoadsOverloadGivesBitwiseTheSameSolve) {
+  const rod::RodModel m = loaded_manipulator();
+  const Options opt = options(8, 2);
+  const Solved old_api = run(m, opt);
+  State state;
+  const Summary s = solve(m, rod::Loads::from_model(m), opt, state);
+  ASSERT_TRUE(s.converged()) << s.message;
+  EXPECT_EQ(s.iterations, old_api.summary.iterations);
+  EXPECT_EQ(state.p_W_m.back(), old_api.state.p_W_m.back());
+  EXPECT_EQ(state.tensions_N, old_api.state.tensions_N);
+}
+
+TEST(BeamFeSolver, SweepPointWarmStartedAcrossLoadChangesEqualsAColdSolveOfTheSameLoads) {
+  // A temperature sweep of the TCA and a change of the tip force and gravity, one State
+  // across the points: each point equals a cold solve of the same loads.
+  rod::RodModel m = testing::circular_manipulator(units::degC_to_K(40.0));
+  testing::add_tension_string(m, "pull", -0.002, 0.002, 0.01);
+  const Options opt = options(8, 2);
+  rod::Loads loads = rod::Loads::from_model(m);
+  State sweep;
+  for (double t_degC : {40.0, 55.0, 70.0, 90.0}) {
+    loads.set_temperature_K(0, units::degC_to_K(t_degC));
+    loads.set_tension_N(1, 0.01 + 1e-4 * t_degC);
+    const Summary warm = solve(m, loads, opt, sweep);
+    ASSERT_TRUE(warm.converged()) << t_degC << " degC: " << warm.message;
+    State cold;
+    const Summary c = solve(m, loads, opt, cold);
+    ASSERT_TRUE(c.converged()) << c.message;
+    EXPECT_LT((sweep.p_W_m.back() - cold.p_W_m.back()).norm(), kSameSolution * m.length_m) << t_degC;
+    for (std::size_t i = 0; i < m.actuators.size(); ++i) {
+      EXPECT_NEAR(sweep.tensions_N[i], cold.tensions_N[i], kSameSolution * std::abs(cold.tensions_N[i]));
+    }
+    if (t_degC > 40.0) {
+      EXPECT_EQ(warm.load_steps, 1) << "a warm point is one Newton solve at full load";
+    }
+    // The sweep's result reads the coil contact at the sweep's temperatures.
+    const rod::Result res = make_result(m, loads, opt, sweep, warm);
+    EXPECT_EQ(res.actuators.size(), m.actuators.size());
+  }
+  loads.tip_force_W_N = {0.0, 1e-3, 0.0};
+  loads.gravity_W_m_s2 = {0.0, 0.0, -9.81};
+  ASSERT_TRUE(solve(m, loads, opt, sweep).converged());
+  State cold;
+  ASSERT_TRUE(solve(m, loads, opt, cold).converged());
+  EXPECT_LT((sweep.p_W_m.back() - cold.p_W_m.back()).norm(), kSameSolution * m.length_m);
+}
+
+TEST(BeamFeSolver, LoadScaleSolvesTheScaledLoads) {
+  rod::RodModel m = loaded_manipulator();
+  const Options opt = options(8, 2);
+  rod::Loads half = rod::Loads::from_model(m);
+  half.load_scale = 0.5;
+  State scaled;
+  ASSERT_TRUE(solve(m, half, opt, scaled).converged());
+  State explicit_half;
+  ASSERT_TRUE(solve(m, half.applied(m), opt, explicit_half).converged());
+  EXPECT_EQ(scaled.p_W_m.back(), explicit_half.p_W_m.back());
+  State full;
+  ASSERT_TRUE(solve(m, rod::Loads::from_model(m), opt, full).converged());
+  EXPECT_GT((scaled.p_W_m.back() - full.p_W_m.back()).norm(), 1e-6 * m.length_m);
+}
+
+TEST(BeamFeSolver, LoadsThatDoNotFitTheModelAreAnInputErrorNamingTheField) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(40.0));
+  rod::Loads loads = rod::Loads::from_model(m);
+  loads.actuators.pop_back();
+  State state;
+  try {
+    solve(m, loads, options(4, 2), state);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "loads.actuators");
+  }
+  loads = rod::Loads::from_model(m);
+  loads.load_scale = 1.5;
+  EXPECT_THROW(solve(m, loads, options(4, 2), state), InputError);
+}
+
+TEST(BeamFeSolver, ADefaultSummarySaysItWasNeverRun) {
+  const Summary none;
+  EXPECT_EQ(none.status, Summary::Status::kNotRun);
+  EXPECT_STREQ(to_string(none.status), "not_run");
+  EXPECT_FALSE(none.equilibrium_residual.has_value());
+}
+
+TEST(BeamFeSolver, CommonResidualOfAConvergedSolveIsWithinItsTolerance) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  const Options opt = options(8, 2);
+  const Solved s = run(m, opt);
+  ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+  EXPECT_EQ(s.summary.characteristic_force_N, rod::characteristic_force_N(m, rod::Loads::from_model(m)));
+  ASSERT_TRUE(s.summary.equilibrium_residual.has_value());
+  // Every row is within tolerance_abs + tolerance_rel scale + floor; over F_c that is far below 1e-6.
+  EXPECT_LT(*s.summary.equilibrium_residual, 1e-6);
+  EXPECT_LE(*s.summary.equilibrium_residual * s.summary.characteristic_force_N,
+            s.summary.residual_inf / std::min(1.0, m.length_m));
+  const rod::Result res = make_result(m, opt, s.state, s.summary);
+  EXPECT_EQ(res.status, "converged");
+  EXPECT_EQ(res.residual, s.summary.equilibrium_residual);
 }
 
 }  // namespace

@@ -155,7 +155,6 @@ rod::RodModel varying_strain_rod(bool with_tca) {
   h.drive.tension_N = 0.004;
   const double w = 2.0 * units::kPi * h.routing.turns_per_m * h.routing.radius_m;
   h.rest_length_m = m.length_m * std::sqrt(1.0 + w * w);
-  h.length_ratio = h.rest_length_m / m.length_m;
   m.actuators.push_back(h);
   if (with_tca) {
     testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.003, 0.001, units::degC_to_K(90.0));

@@ -238,7 +238,6 @@ rod::RodModel three_string_rod() {
   testing::add_tension_string(m, "right", 0.0025, 0.0, 0.004, 2);
   testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0, units::degC_to_K(80.0));
   m.actuators.back().rest_length_m = 0.0406;
-  m.actuators.back().length_ratio = 0.0406 / m.length_m;
   return m;
 }
 

@@ -39,7 +39,7 @@ Eigen::Matrix4d constant_strain_tip(const Vector3d& nu, const Vector3d& omega, d
 }
 
 bool result_is_finite(const rod::Result& r) {
-  bool ok = std::isfinite(r.residual) && std::isfinite(r.wall_time_s) &&
+  bool ok = r.residual.has_value() && std::isfinite(*r.residual) && std::isfinite(r.wall_time_s) &&
             r.tip_position_W_m.allFinite() && r.tip_R_WB.allFinite();
   for (const auto& a : r.actuators) ok = ok && std::isfinite(a.tension_N) && std::isfinite(a.elongation_m);
   for (const auto& p : r.centerline_p_W_m) ok = ok && p.allFinite();
@@ -335,7 +335,6 @@ rod::RodModel general_3d_rod() {
   h.drive.tension_N = 0.004;
   const double w = 2.0 * kPi * h.routing.turns_per_m * h.routing.radius_m;
   h.rest_length_m = m.length_m * std::sqrt(1.0 + w * w);
-  h.length_ratio = h.rest_length_m / m.length_m;
   m.actuators.push_back(h);
   return m;
 }
@@ -768,6 +767,59 @@ TEST(ShootingSegments, MixedSegmentTemperaturesGiveATensionBetweenTheUniformOnes
   std::printf("[segments] 60 degC %.5e N, 120 degC %.5e N, half/half %.5e N\n", cold, hot, mixed);
   EXPECT_LT(mixed, cold);
   EXPECT_GT(mixed, hot);
+}
+
+TEST(ShootingSummary, ADefaultSummarySaysItWasNeverRun) {
+  const Summary none;
+  EXPECT_EQ(none.status, Summary::Status::kNotRun);
+  EXPECT_STREQ(to_string(none.status), "not_run");
+  EXPECT_FALSE(none.equilibrium_residual.has_value());
+}
+
+TEST(ShootingSummary, CommonResidualIsTheScaledOneForTheModelsLoadsAndRescaledForOthers) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
+  ShootingSolver solver(m, rk4_options(40));
+  rod::Loads loads = rod::Loads::from_model(m);
+  Solution sol;
+  const Summary s = solver.solve(loads, sol);
+  ASSERT_TRUE(s.converged()) << s.message;
+  EXPECT_EQ(s.characteristic_force_N, solver.characteristic_force_N());
+  EXPECT_EQ(s.characteristic_force_N, rod::characteristic_force_N(m, loads));
+  ASSERT_TRUE(s.equilibrium_residual.has_value());
+  // Without a tip constraint and with the model's own loads the rows and F_c are the solver's.
+  EXPECT_EQ(*s.equilibrium_residual, s.residual);
+  const rod::Result res = solver.make_result(loads, sol, s);
+  EXPECT_EQ(res.status, "converged");
+  EXPECT_EQ(res.residual, s.equilibrium_residual);
+  EXPECT_EQ(res.characteristic_force_N, s.characteristic_force_N);
+  // Other loads: F_c of those loads; the solver keeps its own scaling.
+  loads.tip_force_W_N = {0.0, 0.0, 3.0 * solver.characteristic_force_N()};  // pulls along the rod
+  const Summary t = solver.solve(loads, sol);
+  ASSERT_TRUE(t.converged()) << t.message;
+  EXPECT_EQ(t.characteristic_force_N, rod::characteristic_force_N(m, loads));
+  ASSERT_TRUE(t.equilibrium_residual.has_value());
+  EXPECT_NEAR(*t.equilibrium_residual, t.residual * solver.characteristic_force_N() / t.characteristic_force_N,
+              1e-15 * t.residual);
+}
+
+TEST(ShootingSummary, AFailedSolveReportsTheResidualOfItsReturnedPoint) {
+  const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(150.0));
+  Options o = rk4_options(40);
+  o.max_iterations = 2;
+  o.tolerance = 1e-30;  // below round-off: the solve cannot converge
+  o.continuation = false;
+  o.coarse_steps = 0;
+  ShootingSolver solver(m, o);
+  const rod::Loads loads = rod::Loads::from_model(m);
+  Solution sol;
+  const Summary s = solver.solve(loads, sol);
+  ASSERT_FALSE(s.converged());
+  ASSERT_TRUE(s.equilibrium_residual.has_value());
+  EXPECT_GT(*s.equilibrium_residual, o.tolerance);
+  const rod::Result res = solver.make_result(loads, sol, s);
+  EXPECT_EQ(res.status, to_string(s.status));
+  EXPECT_NE(res.status, "converged");
+  EXPECT_EQ(res.residual, s.equilibrium_residual);
 }
 
 }  // namespace

@@ -32,7 +32,9 @@ Result sample_result() {
   r.discretization = {{"elements", 32}, {"order", 2}, {"tolerance", 1e-8}};
   r.converged = true;
   r.iterations = 5;
+  r.status = "converged";
   r.residual = 3.1e-13;
+  r.characteristic_force_N = 0.0047;
   r.wall_time_s = 0.0004;
   r.tip_position_W_m = {0.01, -0.002, 0.035};
   // Not symmetric, so a transposed writer fails.
@@ -52,6 +54,26 @@ Result sample_result() {
   return r;
 }
 
+TEST(ResultJson, ADefaultResultSaysNoSolveRanAndAnUnevaluatedResidualIsNull) {
+  const Result none;
+  EXPECT_EQ(none.status, "not_run");
+  EXPECT_FALSE(none.residual.has_value());
+  const json j = to_json(none);
+  EXPECT_EQ(j.at("status"), "not_run");
+  EXPECT_TRUE(j.at("residual").is_null());
+  EXPECT_FALSE(j.at("converged").get<bool>());
+  // "Not evaluated" is not a non-finite value: no note about one.
+  EXPECT_EQ(j.at("message").get<std::string>().find("non-finite"), std::string::npos);
+}
+
+TEST(ResultJson, AConvergedResultWithANonFiniteNumberIsNotReportedConverged) {
+  Result r = sample_result();
+  r.tip_position_W_m.x() = std::numeric_limits<double>::quiet_NaN();
+  const json j = to_json(r);
+  EXPECT_FALSE(j.at("converged").get<bool>());
+  EXPECT_EQ(j.at("status"), "non_finite_result");
+}
+
 TEST(ResultJson, WritesEveryFieldOfTheFormatAndRoundTripsThroughText) {
   const Result r = sample_result();
   // Through text: the written numbers must read back bit-exact.
@@ -67,6 +89,8 @@ TEST(ResultJson, WritesEveryFieldOfTheFormatAndRoundTripsThroughText) {
   EXPECT_FALSE(j.contains("message"));
   EXPECT_EQ(j.at("iterations"), 5);
   EXPECT_EQ(j.at("residual").get<double>(), 3.1e-13);
+  EXPECT_EQ(j.at("status"), "converged");
+  EXPECT_EQ(j.at("characteristic_force_N").get<double>(), 0.0047);
   EXPECT_EQ(j.at("wall_time_s").get<double>(), 0.0004);
   for (int i = 0; i < 3; ++i) {
     EXPECT_EQ(j.at("tip").at("position_m").at(i).get<double>(), r.tip_position_W_m[i]);

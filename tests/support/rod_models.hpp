@@ -89,7 +89,6 @@ inline void add_tension_string(rod::RodModel& m, const std::string& name, double
   }
   a.drive.type = rod::Drive::Type::kTension;
   a.drive.tension_N = tension_N;
-  a.length_ratio = a.rest_length_m / m.length_m;
   m.actuators.push_back(a);
 }
 
@@ -120,7 +119,6 @@ inline void add_tca_string(rod::RodModel& m, const std::string& name,
   a.drive.tca = tca;
   a.drive.segments = {tca::Segment{1.0, t_K}};
   a.rest_length_m = tca->parameters().coiled_length_m;
-  a.length_ratio = a.rest_length_m / m.length_m;
   m.tcas["tca"] = std::move(tca);
   m.actuators.push_back(a);
 }

@@ -3,8 +3,7 @@
 //
 // What it checks
 //   Every `tcasim.scenario/1` file in validation/scenarios/ (other schemas, e.g. the TCA
-//   files, are skipped with a printed reason; a scenario the solver reports as unsupported
-//   is reported as not run and fails) is solved with its own actuation. Its centerline and actuator paths are
+//   files, are skipped with a printed reason) is solved with its own actuation. Its centerline and actuator paths are
 //   written as <name>.vtp (VTK PolyData) and <name>_shape.csv (scripts/plot_shapes.py).
 // Reference
 //   Statics of the whole rod (docs/conventions.md, "Global equilibrium"): the base
@@ -109,7 +108,6 @@ Level solve_level(const tcasim::rod::RodModel& model, int steps) {
   tcasim::cosserat::Solution solution;
   Level level;
   level.summary = solver.solve(actuation, solution);
-  if (level.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) return level;
   level.result = solver.make_result(actuation, solution, level.summary);
   double scale = load_scale_N(model, level.result, actuation);
   if (!(scale > 0.0)) scale = solver.characteristic_force_N();
@@ -169,11 +167,6 @@ int main(int argc, char** argv) {
         row.name = model.name;
         row.main = solve_level(model, steps);
         row.status = tcasim::cosserat::to_string(row.main.summary.status);
-        if (row.main.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) {
-          row.reason = row.main.summary.message;
-          fmt::print("  skip {}: the solver reports it unsupported: {}\n", row.name, row.reason);
-          continue;
-        }
         if (row.main.summary.converged()) {
           tcasim::rod::write_vtp(model, row.main.result, out_dir + "/" + row.name + ".vtp");
           tcasim::rod::write_shape_csv(model, row.main.result, out_dir + "/" + row.name + "_shape.csv");
@@ -228,10 +221,6 @@ int main(int argc, char** argv) {
     for (const auto& row : rows) {
       if (row.status == "error") {
         gates.check(row.name + ": converges", false, "error: " + row.reason, "converged");
-        continue;
-      }
-      if (row.main.summary.status == tcasim::cosserat::Summary::Status::kUnsupported) {
-        gates.not_run(row.name, "the solver reports it unsupported: " + row.reason);
         continue;
       }
       ++solved;

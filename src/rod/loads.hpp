@@ -1,0 +1,59 @@
+#pragma once
+/// The loads of a rod model that a sweep, an inverse solve or a continuation may change
+/// without rebuilding the model: per actuator its tension (tension drive) or its segments'
+/// temperatures (TCA drive), the tip wrench, gravity, and a load scale. Both solvers take
+/// them (cosserat::ShootingSolver::solve, beam_fe::solve); Loads::from_model gives the loads
+/// the scenario file describes.
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "rod/model.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::rod {
+
+/// The load of one actuator: which field is read depends on the model's drive type.
+struct ActuatorLoad {
+  double tension_N = 0.0;              ///< tension drive: tension of one string (positive = tensile)
+  std::vector<tca::Segment> segments;  ///< TCA drive: segment fractions and temperatures [K]
+};
+
+/// Everything a solve may change without rebuilding the model (world frame W, SI).
+struct Loads {
+  std::vector<ActuatorLoad> actuators;  ///< one per model actuator, in model order
+  Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();    ///< applied to the rod at the tip
+  Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();  ///< applied to the rod at the tip
+  Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
+  /// Load scale s in [0, 1]: the solvers apply applied(model), i.e. s times the tensions, tip
+  /// wrench and gravity, and temperatures T_ref + s (T - T_ref) (T_ref the TCA material's
+  /// reference temperature). 1 (the default) applies the loads as given.
+  double load_scale = 1.0;
+
+  /// The loads the model file describes (load_scale 1).
+  static Loads from_model(const RodModel& model);
+  /// Sets every segment of TCA actuator `index` to temperature t_K [K].
+  void set_temperature_K(std::size_t index, double t_K);
+  /// Sets the segment temperatures of TCA actuator `index` [K], one per segment.
+  void set_segment_temperatures_K(std::size_t index, const std::vector<double>& t_K);
+  /// Sets the tension of one string of tension-driven actuator `index` [N].
+  void set_tension_N(std::size_t index, double tension_N);
+
+  /// Throws InputError (key `loads....`, value, rule) unless the loads fit `model`: one entry
+  /// per actuator, non-empty segments for a TCA drive, finite values, load_scale in [0, 1].
+  void validate(const RodModel& model) const;
+  /// The same loads with load_scale folded in (load_scale 1; an exact copy when it is 1).
+  Loads applied(const RodModel& model) const;
+};
+
+/// Characteristic force F_c [N] of the residual both methods report (docs/scenario-format.md
+/// "residual"), of loads.applied(model): F_c = max(min(E I_x, E I_y) / L^2, |F_e|, |M_e| / L,
+/// rho A |g| L, c_i |T_i| of the tension drives). The shooting solver scales its residual by
+/// F_c of the model's own loads (cosserat/shooting.hpp).
+double characteristic_force_N(const RodModel& model, const Loads& loads);
+
+/// A copy of `model` whose own loads (drive tensions and segments, tip wrench, gravity) are
+/// loads.applied(model); validates the loads first.
+RodModel with_loads(const RodModel& model, const Loads& loads);
+
+}  // namespace tcasim::rod
