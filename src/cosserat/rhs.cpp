@@ -1,6 +1,7 @@
 #include "cosserat/rhs.hpp"
 
 #include "cosserat/string_system.hpp"
+#include "rod/closed_form.hpp"
 
 namespace tcasim::cosserat::internal {
 
@@ -199,10 +200,7 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
     cT[i] = count[i] * T;
     if (k >= 0) {
       const auto& tca = *model.actuators[i].drive.tca;
-      const double t_ref = tca.material().reference_temperature_K;
-      auto& segs = scaled_segments[i];
-      segs = act.actuators[i].segments;  // no allocation after the first call
-      for (tca::Segment& seg : segs) seg.temperature_K = t_ref + lambda * (seg.temperature_K - t_ref);
+      rod::ramp_segments(tca.material(), act.actuators[i].segments, lambda, scaled_segments[i]);
     }
   }
   f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;

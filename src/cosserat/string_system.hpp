@@ -9,6 +9,8 @@
 #include <cmath>
 #include <optional>
 
+#include "common/lie_series.hpp"
+
 namespace tcasim::cosserat::internal {
 
 using Vec3 = Eigen::Vector3d;
@@ -16,11 +18,7 @@ using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-inline Mat3 hat(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
+using so3::hat;
 
 /// Solver of the symmetric 6x6 strain-derivative system M = [A B; B^T C] (fixed size, no
 /// heap) by block elimination with Eigen's closed-form 3x3 inverses: S = C - B^T A^-1 B,
