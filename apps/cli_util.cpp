@@ -44,7 +44,8 @@ std::vector<double> parse_range(const std::string& text, const std::string& flag
     start = colon + 1;
   }
   if (parts.size() == 1) return {parse_number(parts[0], flag, text)};
-  if (parts.size() != 3) throw InputError(flag, text, "must be a number or a range START:STOP:STEP");
+  if (parts.size() != 3)
+    throw InputError(flag, text, "must be a number or a range START:STOP:STEP");
   const double a = parse_number(parts[0], flag, text);
   const double b = parse_number(parts[1], flag, text);
   const double step = parse_number(parts[2], flag, text);
@@ -58,7 +59,8 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) 
   const std::string rule = "must be three comma-separated finite numbers X,Y,Z";
   while (true) {
     const std::size_t comma = text.find(',', pos);
-    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const std::string item =
+        text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     require(k < 3, flag, text, rule);
     std::size_t used = 0;
     double value = 0.0;
@@ -67,7 +69,8 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) 
     } catch (const std::exception&) {
       used = 0;
     }
-    require(used > 0 && item.find_first_not_of(" \t", used) == std::string::npos && std::isfinite(value),
+    require(used > 0 && item.find_first_not_of(" \t", used) == std::string::npos &&
+                std::isfinite(value),
             flag, text, rule);
     v[k++] = value;
     if (comma == std::string::npos) break;
@@ -89,7 +92,8 @@ std::vector<int> actuator_indices(const rod::RodModel& model, const std::string&
   std::size_t pos = 0;
   while (pos <= names.size()) {
     const std::size_t comma = names.find(',', pos);
-    const std::string name = names.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const std::string name =
+        names.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     int found = -1;
     for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
       if (model.actuators[i].name == name) found = i;
@@ -118,7 +122,8 @@ std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::s
     chosen = tcas.begin()->second;
   } else {
     const auto it = tcas.find(id);
-    require(it != tcas.end(), "--tca", id, fmt::format("is not a TCA of {} (it has: {})", file, ids));
+    require(it != tcas.end(), "--tca", id,
+            fmt::format("is not a TCA of {} (it has: {})", file, ids));
     chosen = it->second;
   }
   if (material_name.empty() && f12_form.empty()) return chosen;
@@ -140,7 +145,8 @@ void require_count(long long value, const std::string& flag, long long lo, long 
           fmt::format("must be an integer in [{}, {}]", lo, hi));
 }
 
-Output::Output(std::string path, std::string flag) : path_(std::move(path)), flag_(std::move(flag)) {
+Output::Output(std::string path, std::string flag)
+    : path_(std::move(path)), flag_(std::move(flag)) {
   if (path_.empty() || path_ == "-") return;
   // Checked before the work that fills the buffer, so a typo in the folder costs nothing.
   const std::filesystem::path dir = std::filesystem::path(path_).parent_path();

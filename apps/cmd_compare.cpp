@@ -13,8 +13,8 @@
 #include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
 #include "common/error.hpp"
-#include "rod/scenario.hpp"
 #include "crosscheck/crosscheck.hpp"
+#include "rod/scenario.hpp"
 
 namespace tcasim::app {
 
@@ -42,7 +42,8 @@ std::vector<int> parse_counts(const std::string& text, const std::string& flag, 
       used = 0;
     }
     if (used == 0 || used != item.size() || v < 1 || v > max) {
-      throw InputError(flag, text, fmt::format("must be a comma-separated list of integers in [1, {}]", max));
+      throw InputError(flag, text,
+                       fmt::format("must be a comma-separated list of integers in [1, {}]", max));
     }
     out.push_back(v);
     start = end + 1;
@@ -60,8 +61,9 @@ void require_reference_steps(int steps) {
 }
 
 void print_reference(std::FILE* f, const xc::Reference& ref, int steps) {
-  fmt::print(f, "reference: shooting RK4 {} steps ({:.3f} s), estimated error {:.2e} m (vs {} steps / 15)", steps,
-             ref.rk4.time_s, ref.self_error_m, steps / 2);
+  fmt::print(
+      f, "reference: shooting RK4 {} steps ({:.3f} s), estimated error {:.2e} m (vs {} steps / 15)",
+      steps, ref.rk4.time_s, ref.self_error_m, steps / 2);
   if (ref.cvode) fmt::print(f, "; CVODE - RK4 {:.2e} m", ref.cvode_difference_m);
   fmt::print(f, "\n");
 }
@@ -75,14 +77,18 @@ void add_compare_command(CLI::App& app) {
     bool default_tolerances = false;
   };
   auto flags = std::make_shared<Flags>();
-  auto* cmd = app.add_subcommand(
-      "compare", "Cross-check: FE at increasing refinement against the shooting solution (tip, rotation, tension)");
+  auto* cmd = app.add_subcommand("compare",
+                                 "Cross-check: FE at increasing refinement against the shooting "
+                                 "solution (tip, rotation, tension)");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  cmd->add_option("--elements", flags->elements, "FE element counts, comma-separated (default 16,32,64,128)");
+  cmd->add_option("--elements", flags->elements,
+                  "FE element counts, comma-separated (default 16,32,64,128)");
   cmd->add_option("--orders", flags->orders, "FE orders, comma-separated (default 2,1)");
-  cmd->add_option("--reference-steps", flags->reference.steps, "RK4 steps of the shooting reference (default 2048)");
-  cmd->add_flag("--default-tolerances", flags->default_tolerances,
-                "FE Newton at beam_fe's default tolerances (default: tightened, as the validation)");
+  cmd->add_option("--reference-steps", flags->reference.steps,
+                  "RK4 steps of the shooting reference (default 2048)");
+  cmd->add_flag(
+      "--default-tolerances", flags->default_tolerances,
+      "FE Newton at beam_fe's default tolerances (default: tightened, as the validation)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
   cmd->callback([flags] {
     require_reference_steps(flags->reference.steps);
@@ -127,22 +133,29 @@ void add_converge_command(CLI::App& app) {
     xc::ReferenceSettings reference;
   };
   auto flags = std::make_shared<Flags>();
-  auto* cmd = app.add_subcommand(
-      "converge", "h-convergence of the FE: error vs shooting and vs Richardson extrapolation, observed orders");
+  auto* cmd = app.add_subcommand("converge",
+                                 "h-convergence of the FE: error vs shooting and vs Richardson "
+                                 "extrapolation, observed orders");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  cmd->add_option("--order", flags->order, "FE order, 1 or 2 (default 2)")->check(CLI::IsMember({1, 2}));
-  cmd->add_option("--levels", flags->levels, "number of meshes, each twice as fine (>= 3; default 4)");
-  cmd->add_option("--coarsest", flags->coarsest,
-                  "elements of the coarsest mesh (default: the validation's choice for this scenario)");
-  cmd->add_option("--reference-steps", flags->reference.steps, "RK4 steps of the shooting reference (default 2048)");
+  cmd->add_option("--order", flags->order, "FE order, 1 or 2 (default 2)")
+      ->check(CLI::IsMember({1, 2}));
+  cmd->add_option("--levels", flags->levels,
+                  "number of meshes, each twice as fine (>= 3; default 4)");
+  cmd->add_option(
+      "--coarsest", flags->coarsest,
+      "elements of the coarsest mesh (default: the validation's choice for this scenario)");
+  cmd->add_option("--reference-steps", flags->reference.steps,
+                  "RK4 steps of the shooting reference (default 2048)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout; the table goes to stderr)");
   cmd->callback([flags] {
     require_reference_steps(flags->reference.steps);
-    require(flags->levels >= 3, "--levels", flags->levels, "must be >= 3 (Richardson needs three meshes)");
+    require(flags->levels >= 3, "--levels", flags->levels,
+            "must be >= 3 (Richardson needs three meshes)");
     require_count(flags->coarsest, "--coarsest", 0, kMaxElements);
     const rod::RodModel model = load_supported(flags->scenario);
-    const int coarsest =
-        flags->coarsest > 0 ? flags->coarsest : xc::study_levels(model.name, flags->order, false).coarsest;
+    const int coarsest = flags->coarsest > 0
+                             ? flags->coarsest
+                             : xc::study_levels(model.name, flags->order, false).coarsest;
     // The finest mesh has coarsest 2^(levels - 1) elements.
     long long finest = coarsest;
     for (int k = 1; k < flags->levels && finest <= kMaxElements; ++k) finest *= 2;
@@ -153,12 +166,13 @@ void add_converge_command(CLI::App& app) {
     tol.order = flags->order;
     progress(model.name + ": shooting reference");
     const xc::Reference ref = xc::shooting_reference(model, flags->reference);
-    const xc::ConvergenceStudy study =
-        xc::convergence_study(model, ref, tol, xc::refinement_levels(coarsest, flags->levels), progress);
+    const xc::ConvergenceStudy study = xc::convergence_study(
+        model, ref, tol, xc::refinement_levels(coarsest, flags->levels), progress);
     print_reference(stderr, ref, flags->reference.steps);
     const xc::OrderBracket b = xc::order_bracket(flags->order);
-    fmt::print(stderr, "{} / order {} (position at s = {} m; expected order {} +- {}):\n{}", model.name, flags->order,
-               study.measured_s_m, b.expected, b.tolerance, xc::convergence_table(study));
+    fmt::print(stderr, "{} / order {} (position at s = {} m; expected order {} +- {}):\n{}",
+               model.name, flags->order, study.measured_s_m, b.expected, b.tolerance,
+               xc::convergence_table(study));
     Output out(flags->out);
     out.stream() << xc::convergence_csv_header() << xc::convergence_csv_rows(model.name, study);
     out.commit();

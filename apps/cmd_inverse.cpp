@@ -28,8 +28,8 @@ constexpr int kExitNotConverged = 4;
 /// --max-temperature-degC -> K (NaN when absent: the material's maximum).
 double max_temperature_K(double t_degC, bool given) {
   if (!given) return std::numeric_limits<double>::quiet_NaN();
-  require(std::isfinite(t_degC) && t_degC > -units::kZeroCelsius_K, "--max-temperature-degC", t_degC,
-          "must be above absolute zero");
+  require(std::isfinite(t_degC) && t_degC > -units::kZeroCelsius_K, "--max-temperature-degC",
+          t_degC, "must be above absolute zero");
   return units::degC_to_K(t_degC);
 }
 
@@ -39,7 +39,8 @@ auto with_flag_names(F&& f) {
   try {
     return f();
   } catch (const InputError& e) {
-    if (e.key() == "max_temperature_degC") throw InputError("--max-temperature-degC", e.value(), e.rule());
+    if (e.key() == "max_temperature_degC")
+      throw InputError("--max-temperature-degC", e.value(), e.rule());
     throw;
   }
 }
@@ -61,19 +62,25 @@ void add_inverse_command(CLI::App& app) {
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
-      "inverse", "Inverse kinetostatics: actuation (temperatures or tensions) that puts the tip at a target");
-  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1), free tip")->required();
-  cmd->add_option("--target-m", flags->target, "target tip position X,Y,Z [m], world frame")->required();
-  cmd->add_option("--actuators", flags->actuators, "comma-separated actuator names to adjust (default: all)");
-  auto* tmax = cmd->add_option("--max-temperature-degC", flags->max_t_degC,
-                               "upper temperature bound [degC] (default: the material's valid maximum)");
+      "inverse",
+      "Inverse kinetostatics: actuation (temperatures or tensions) that puts the tip at a target");
+  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1), free tip")
+      ->required();
+  cmd->add_option("--target-m", flags->target, "target tip position X,Y,Z [m], world frame")
+      ->required();
+  cmd->add_option("--actuators", flags->actuators,
+                  "comma-separated actuator names to adjust (default: all)");
+  auto* tmax =
+      cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                      "upper temperature bound [degC] (default: the material's valid maximum)");
   cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
   cmd->callback([flags, tmax] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     if (model.tip_constraint) {
-      throw InputError("scenario tip_constraint", "(present)",
-                       "must be absent for `tcasim inverse` (it moves a free tip; use `tcasim grasp` "
-                       "for a blocked tip)");
+      throw InputError(
+          "scenario tip_constraint", "(present)",
+          "must be absent for `tcasim inverse` (it moves a free tip; use `tcasim grasp` "
+          "for a blocked tip)");
     }
     cosserat::InverseOptions o;
     const Eigen::Vector3d target = parse_vector3(flags->target, "--target-m");
@@ -92,8 +99,8 @@ void add_inverse_command(CLI::App& app) {
       }
     }
     cosserat::Solution sol;
-    const cosserat::InverseResult r =
-        with_flag_names([&] { return cosserat::solve_inverse(solver, model, target, o, act, sol); });
+    const cosserat::InverseResult r = with_flag_names(
+        [&] { return cosserat::solve_inverse(solver, model, target, o, act, sol); });
 
     nlohmann::json j;
     j["schema"] = "tcasim.inverse/1";
@@ -131,7 +138,8 @@ void add_inverse_command(CLI::App& app) {
     j["actuators"] = acts;
     write_json(j, flags->out);
     if (!r.converged()) {
-      fmt::print(stderr, "tcasim inverse: not converged ({}): {}\n", cosserat::to_string(r.status), r.message);
+      fmt::print(stderr, "tcasim inverse: not converged ({}): {}\n", cosserat::to_string(r.status),
+                 r.message);
       throw CLI::RuntimeError(kExitNotConverged);
     }
   });
@@ -144,18 +152,23 @@ void add_grasp_command(CLI::App& app) {
     int fingers = 0;
   };
   auto flags = std::make_shared<Flags>();
-  auto* cmd = app.add_subcommand(
-      "grasp", "Grasp temperature: TCA temperature at which a blocked finger's normal force reaches m g/(mu n)");
+  auto* cmd = app.add_subcommand("grasp",
+                                 "Grasp temperature: TCA temperature at which a blocked finger's "
+                                 "normal force reaches m g/(mu n)");
   cmd->add_option("scenario", flags->scenario,
-                  "scenario of one finger with a tip_constraint and its contact normal")->required();
+                  "scenario of one finger with a tip_constraint and its contact normal")
+      ->required();
   cmd->add_option("--mass-g", flags->mass_g, "grasped mass [g]")->required();
-  cmd->add_option("--friction", flags->friction, "friction coefficient mu finger/object")->required();
+  cmd->add_option("--friction", flags->friction, "friction coefficient mu finger/object")
+      ->required();
   cmd->add_option("--fingers", flags->fingers, "number of fingers n")->required();
-  auto* tmax = cmd->add_option("--max-temperature-degC", flags->max_t_degC,
-                               "upper temperature bound [degC] (default: the material's valid maximum)");
+  auto* tmax =
+      cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                      "upper temperature bound [degC] (default: the material's valid maximum)");
   cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
   cmd->callback([flags, tmax] {
-    require(std::isfinite(flags->mass_g) && flags->mass_g > 0.0, "--mass-g", flags->mass_g, "must be > 0");
+    require(std::isfinite(flags->mass_g) && flags->mass_g > 0.0, "--mass-g", flags->mass_g,
+            "must be > 0");
     require(std::isfinite(flags->friction) && flags->friction > 0.0, "--friction", flags->friction,
             "must be > 0");
     require(flags->fingers >= 1, "--fingers", flags->fingers, "must be an integer >= 1");
@@ -172,7 +185,8 @@ void add_grasp_command(CLI::App& app) {
     o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
     cosserat::Options so;
     so.tolerance = 1e-12;  // the blocked force is checked to 1e-9 relative
-    const cosserat::GraspResult r = with_flag_names([&] { return cosserat::solve_grasp(model, so, o); });
+    const cosserat::GraspResult r =
+        with_flag_names([&] { return cosserat::solve_grasp(model, so, o); });
 
     nlohmann::json j;
     j["schema"] = "tcasim.grasp/1";
@@ -185,8 +199,9 @@ void add_grasp_command(CLI::App& app) {
     j["temperature_degC"] = units::K_to_degC(r.temperature_K);
     j["normal_force_N"] = r.required_force_N;
     j["blocked_normal_force_N"] = r.blocked_normal_force_N;
-    j["root_temperature_degC"] =
-        r.root_temperature_K ? nlohmann::json(units::K_to_degC(*r.root_temperature_K)) : nlohmann::json();
+    j["root_temperature_degC"] = r.root_temperature_K
+                                     ? nlohmann::json(units::K_to_degC(*r.root_temperature_K))
+                                     : nlohmann::json();
     j["iterations"] = r.iterations;
     j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
     write_json(j, flags->out);

@@ -29,8 +29,8 @@ namespace {
 constexpr int kExitNotConverged = 4;
 
 struct IntegratorFlags {
-  int steps = 0;        // 0: solver default
-  double rtol = 0.0;    // 0: fixed steps
+  int steps = 0;      // 0: solver default
+  double rtol = 0.0;  // 0: fixed steps
   std::string scheme = "rk4";
   bool no_planar = false;
 };
@@ -131,7 +131,8 @@ void add_solve_command(CLI::App& app) {
     FeFlags fe;
   };
   auto flags = std::make_shared<Flags>();
-  auto* cmd = app.add_subcommand("solve", "Forward kinetostatics: solve one scenario and write a result file");
+  auto* cmd = app.add_subcommand(
+      "solve", "Forward kinetostatics: solve one scenario and write a result file");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
   cmd->add_option("--method", flags->method,
                   "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)")
@@ -139,10 +140,12 @@ void add_solve_command(CLI::App& app) {
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "result file (default: stdout)");
-  cmd->add_option("--vtk", flags->vtk,
-                  "also write the deformed centerline and actuator paths as VTK PolyData (FILE.vtp, ParaView)");
-  cmd->add_option("--shape-csv", flags->shape_csv,
-                  "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
+  cmd->add_option(
+      "--vtk", flags->vtk,
+      "also write the deformed centerline and actuator paths as VTK PolyData (FILE.vtp, ParaView)");
+  cmd->add_option(
+      "--shape-csv", flags->shape_csv,
+      "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
   cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     const rod::Result result = solve_with(model, flags->method, flags->integrator, flags->fe);
@@ -163,13 +166,15 @@ void add_sweep_command(CLI::App& app) {
     FeFlags fe;
   };
   auto flags = std::make_shared<Flags>();
-  auto* cmd = app.add_subcommand(
-      "sweep", "Solve a scenario over a range of one actuator's temperature or tension (warm-started); CSV out");
+  auto* cmd = app.add_subcommand("sweep",
+                                 "Solve a scenario over a range of one actuator's temperature or "
+                                 "tension (warm-started); CSV out");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
   cmd->add_option("--actuator", flags->actuator, "name of the actuator to sweep")->required();
   auto* temps = cmd->add_option("--temperatures-degC", flags->temperatures,
                                 "TCA temperatures START:STOP:STEP [degC] (every segment)");
-  auto* tens = cmd->add_option("--tensions-N", flags->tensions, "tensions START:STOP:STEP [N] (tension drive)");
+  auto* tens = cmd->add_option("--tensions-N", flags->tensions,
+                               "tensions START:STOP:STEP [N] (tension drive)");
   temps->excludes(tens);
   cmd->add_option("--method", flags->method,
                   "solver: cosserat (shooting, default) or fe (geometrically exact beam elements); "
@@ -187,7 +192,8 @@ void add_sweep_command(CLI::App& app) {
     if (index == model.actuators.size()) {
       std::string names;
       for (const auto& a : model.actuators) names += (names.empty() ? "" : ", ") + a.name;
-      throw InputError("--actuator", flags->actuator, "names no actuator of the scenario (it has: " + names + ")");
+      throw InputError("--actuator", flags->actuator,
+                       "names no actuator of the scenario (it has: " + names + ")");
     }
     const rod::Actuator& act = model.actuators[index];
     const bool by_temperature = !flags->temperatures.empty();
@@ -230,7 +236,8 @@ void add_sweep_command(CLI::App& app) {
     for (const auto& a : model.actuators) {
       fmt::print(os, ",{0}_tension_N,{0}_elongation_m", a.name);
       // Coil contact of TCA drives in the solved state (per segment for a segmented TCA).
-      if (a.drive.type == rod::Drive::Type::kTca) fmt::print(os, ",{0}_coils_closed,{0}_contact_force_N", a.name);
+      if (a.drive.type == rod::Drive::Type::kTca)
+        fmt::print(os, ",{0}_coils_closed,{0}_contact_force_N", a.name);
       if (a.drive.segmented) {
         for (std::size_t k = 1; k <= a.drive.segments.size(); ++k) {
           fmt::print(os, ",{0}_{1}_coils_closed,{0}_{1}_contact_force_N", a.name, k);
@@ -260,14 +267,14 @@ void add_sweep_command(CLI::App& app) {
       if (!r.converged) ++failures;
       fmt::print(os, "{},{},{},{},{:.12e},{:.12e},{:.12e},{}", values[k], r.converged ? 1 : 0,
                  r.iterations, r.residual ? fmt::format("{:.6e}", *r.residual) : std::string(),
-                 r.tip_position_W_m.x(), r.tip_position_W_m.y(),
-                 r.tip_position_W_m.z(),
+                 r.tip_position_W_m.x(), r.tip_position_W_m.y(), r.tip_position_W_m.z(),
                  r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string());
       for (const auto& a : r.actuators) {
         fmt::print(os, ",{:.12e},{:.12e}", a.tension_N, a.elongation_m);
         if (a.is_tca) fmt::print(os, ",{},{:.12e}", a.coils_closed ? 1 : 0, a.contact_force_N);
         for (const auto& seg : a.segments) {
-          fmt::print(os, ",{},{:.12e}", seg.second.coils_closed ? 1 : 0, seg.second.contact_force_N);
+          fmt::print(os, ",{},{:.12e}", seg.second.coils_closed ? 1 : 0,
+                     seg.second.contact_force_N);
         }
       }
       fmt::print(os, "\n");
@@ -275,7 +282,8 @@ void add_sweep_command(CLI::App& app) {
     }
     out.commit();
     if (failures > 0) {
-      fmt::print(stderr, "tcasim sweep: {} of {} points did not converge (converged = 0 in the CSV)\n",
+      fmt::print(stderr,
+                 "tcasim sweep: {} of {} points did not converge (converged = 0 in the CSV)\n",
                  failures, values.size());
       throw CLI::RuntimeError(kExitNotConverged);
     }

@@ -56,8 +56,8 @@ void run_tca(const TcaOptions& o) {
   fmt::print(out, "temperature_degC,elongation_m,tension_N,pitch_angle_deg,coils_closed\n");
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const tca::CurvePoint& p = curve[i];
-    fmt::print(out, "{},{},{},{},{}\n", temps_degC[i], p.elongation_m,
-               p.tension_N, units::rad_to_deg(p.pitch_angle_rad), p.coils_closed ? 1 : 0);
+    fmt::print(out, "{},{},{},{},{}\n", temps_degC[i], p.elongation_m, p.tension_N,
+               units::rad_to_deg(p.pitch_angle_rad), p.coils_closed ? 1 : 0);
   }
   output.commit();
 }
@@ -72,7 +72,8 @@ void add_tca_command(CLI::App& app) {
       "Elongation of one TCA under a constant load over a temperature range ([Pawlowski2019] "
       "Eqs. (1)-(5), closed coils: an extension TCA stays at its closed length until the "
       "onset). Prints CSV temperature_degC,elongation_m,tension_N,pitch_angle_deg,coils_closed.");
-  cmd->add_option("file", opts->file, "Scenario or TCA file (schema tcasim.tcas/1) defining the TCA")
+  cmd->add_option("file", opts->file,
+                  "Scenario or TCA file (schema tcasim.tcas/1) defining the TCA")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--tca", opts->id, "Id of the TCA in FILE (required if FILE defines several)");

@@ -11,14 +11,18 @@ void add_tca_command(CLI::App& app);
 /// `tcasim fit ...`: calibration of TCA material parameters to measured curves.
 void add_fit_command(CLI::App& app);
 
-/// `tcasim solve SCENARIO [--method cosserat|fe] [--steps N | --rtol X] [--elements N --order 1|2] [--out F]`
+/// `tcasim solve SCENARIO [--method cosserat|fe] [--steps N | --rtol X] [--elements N --order 1|2]
+/// [--out F]`
 void add_solve_command(CLI::App& app);
-/// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S) [--method cosserat|fe]`
+/// `tcasim sweep SCENARIO --actuator NAME (--temperatures-degC A:B:S | --tensions-N A:B:S)
+/// [--method cosserat|fe]`
 void add_sweep_command(CLI::App& app);
 
-/// `tcasim inverse SCENARIO --target-m X,Y,Z [--actuators a,b] [--max-temperature-degC T] [--out F]`
+/// `tcasim inverse SCENARIO --target-m X,Y,Z [--actuators a,b] [--max-temperature-degC T] [--out
+/// F]`
 void add_inverse_command(CLI::App& app);
-/// `tcasim grasp SCENARIO --mass-g M --friction MU --fingers N [--max-temperature-degC T] [--out F]`
+/// `tcasim grasp SCENARIO --mass-g M --friction MU --fingers N [--max-temperature-degC T] [--out
+/// F]`
 void add_grasp_command(CLI::App& app);
 /// `tcasim compare SCENARIO [--elements N,...] [--orders 1,2] [--out CSV]`: FE vs shooting table
 void add_compare_command(CLI::App& app);

@@ -8,11 +8,12 @@
 //    elements (cost vs element count; expected linear).
 //  - BM_PinnedManipulator64Quadratic: the same robot with its tip pinned at
 //    (-22, 1, 31) mm (tip_constraint, 3 Lagrange multipliers), 64 quadratic elements.
-// Run: build-fe2/bench/bench_beam_fe --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Run: build-fe2/bench/bench_beam_fe --benchmark_repetitions=5
+// --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include "beam_fe/models.hpp"
 #include "beam_fe/beam_fe.hpp"
+#include "beam_fe/models.hpp"
 #include "common/units.hpp"
 
 namespace {
@@ -44,8 +45,13 @@ void run(benchmark::State& bench, int elements, bool pinned = false) {
 void BM_CircularManipulator64Quadratic(benchmark::State& bench) { run(bench, 64); }
 BENCHMARK(BM_CircularManipulator64Quadratic)->Unit(benchmark::kMillisecond);
 
-void BM_CircularManipulatorElements(benchmark::State& bench) { run(bench, static_cast<int>(bench.range(0))); }
-BENCHMARK(BM_CircularManipulatorElements)->RangeMultiplier(4)->Range(16, 4096)->Unit(benchmark::kMillisecond);
+void BM_CircularManipulatorElements(benchmark::State& bench) {
+  run(bench, static_cast<int>(bench.range(0)));
+}
+BENCHMARK(BM_CircularManipulatorElements)
+    ->RangeMultiplier(4)
+    ->Range(16, 4096)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_PinnedManipulator64Quadratic(benchmark::State& bench) { run(bench, 64, true); }
 BENCHMARK(BM_PinnedManipulator64Quadratic)->Unit(benchmark::kMillisecond);

@@ -78,9 +78,9 @@ Eigen::Vector3d tip(const rod::RodModel& m, const cosserat::Options& o) {
   const cosserat::Summary s = solver.solve(act, sol);
   if (!s.converged()) std::printf("  (not converged: %s)\n", s.message.c_str());
   std::printf("  %s steps %4d: iterations %d, IVPs %d, continuation steps %d\n",
-              o.kinematics == cosserat::Kinematics::kLieGroup ? "RKMK4" : ode::to_string(o.integrator.method),
-              o.integrator.steps,
-              s.iterations, s.ivp_count, s.continuation_steps);
+              o.kinematics == cosserat::Kinematics::kLieGroup ? "RKMK4"
+                                                              : ode::to_string(o.integrator.method),
+              o.integrator.steps, s.iterations, s.ivp_count, s.continuation_steps);
   return sol.tip_state.head<3>();
 }
 
@@ -148,7 +148,8 @@ void BM_CircularManipulatorCold90degC(benchmark::State& state) {
 BENCHMARK(BM_CircularManipulatorCold90degC)->Apply(manipulator_args);
 
 /// Sweeps 25 degC (cold) to last_degC in 5 degC warm steps; returns the last solution.
-cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, cosserat::Actuation& act, int last_degC) {
+cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, cosserat::Actuation& act,
+                            int last_degC) {
   cosserat::Solution sol;
   for (int t = 25; t <= last_degC; t += 5) {
     act.set_temperature_K(0, units::degC_to_K(t));
@@ -186,8 +187,8 @@ void BM_CircularManipulatorWarmSweepStep(benchmark::State& state) {
       ivps += s.ivp_count;
     }
   }
-  state.counters["step_time"] =
-      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["step_time"] = benchmark::Counter(
+      static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["ivps_per_step"] = static_cast<double>(ivps) / steps;
 }
 BENCHMARK(BM_CircularManipulatorWarmSweepStep)->Apply(manipulator_args);
@@ -265,7 +266,10 @@ void print_sweep_accuracy(const char* name, const cosserat::Options& o) {
     const cosserat::Summary r = reference.solve(act, ref);
     if (!s.converged() || !r.converged()) std::printf("  (not converged at %d degC)\n", t);
     const double e = (sol.tip_state.head<3>() - ref.tip_state.head<3>()).norm();
-    if (e > worst) { worst = e; worst_degC = t; }
+    if (e > worst) {
+      worst = e;
+      worst_degC = t;
+    }
     if (t == 90) at90 = e;
   }
   std::printf("  %-26s sweep tip error: %.2e m at 90 degC, largest %.2e m at %d degC\n", name, at90,
@@ -276,7 +280,8 @@ void print_sweep_accuracy(const char* name, const cosserat::Options& o) {
 
 int main(int argc, char** argv) {
   print_accuracy("circular manipulator, 90 degC",
-                 cosserat::testing::circular_manipulator(units::degC_to_K(90.0)), kManipulatorSteps);
+                 cosserat::testing::circular_manipulator(units::degC_to_K(90.0)),
+                 kManipulatorSteps);
   std::printf("circular manipulator, RK6 at %d steps, 90 degC\n", kManipulatorRk6Steps);
   {
     const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));

@@ -49,7 +49,8 @@ void inverse_iteration(benchmark::State& state, cosserat::TipDerivativeMethod me
   cosserat::Solution sol;
   if (!solver.solve(a, sol).converged()) state.SkipWithError("initial solve failed");
   cosserat::TipDerivatives d;
-  if (!cosserat::tip_derivatives(solver, m, a, sol, {0, 1}, method, d)) state.SkipWithError("J failed");
+  if (!cosserat::tip_derivatives(solver, m, a, sol, {0, 1}, method, d))
+    state.SkipWithError("J failed");
   Eigen::VectorXd dq(2);
   double sign = 1.0;
   for (auto _ : state) {
@@ -66,7 +67,8 @@ void inverse_iteration(benchmark::State& state, cosserat::TipDerivativeMethod me
     if (!s.converged()) state.SkipWithError("forward solve failed");
     state.counters["newton_iterations"] = s.iterations;
     state.counters["ivps"] = s.ivp_count;
-    if (!cosserat::tip_derivatives(solver, m, a, sol, {0, 1}, method, d)) state.SkipWithError("J failed");
+    if (!cosserat::tip_derivatives(solver, m, a, sol, {0, 1}, method, d))
+      state.SkipWithError("J failed");
     benchmark::DoNotOptimize(d.J.data());
   }
 }

@@ -43,7 +43,8 @@ void remove_dir() {
 }
 
 [[noreturn]] void abort_with(const char* reader, const char* kind, const char* what) {
-  std::fprintf(stderr, "scenario_fuzzer: %s threw %s (not an InputError): %s\n", reader, kind, what);
+  std::fprintf(stderr, "scenario_fuzzer: %s threw %s (not an InputError): %s\n", reader, kind,
+               what);
   std::abort();
 }
 
@@ -65,7 +66,8 @@ void run_reader(const char* name, Read read) {
 extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
   Config& c = config();
   const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/tcasim-fuzz-XXXXXX";
+  std::string pattern =
+      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/tcasim-fuzz-XXXXXX";
   if (mkdtemp(pattern.data()) == nullptr) {
     std::perror("scenario_fuzzer: mkdtemp");
     std::abort();
@@ -73,9 +75,11 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
   c.dir = pattern;
   const std::filesystem::path materials = c.dir / "materials";
   std::filesystem::create_directories(materials);
-  const std::filesystem::path shipped = std::filesystem::path(TCASIM_SHIPPED_DATA_DIR) / "materials";
+  const std::filesystem::path shipped =
+      std::filesystem::path(TCASIM_SHIPPED_DATA_DIR) / "materials";
   for (const auto& e : std::filesystem::directory_iterator(shipped)) {
-    if (e.path().extension() == ".json") std::filesystem::copy_file(e.path(), materials / e.path().filename());
+    if (e.path().extension() == ".json")
+      std::filesystem::copy_file(e.path(), materials / e.path().filename());
   }
   c.file = materials / "fuzz.json";
   std::atexit(remove_dir);

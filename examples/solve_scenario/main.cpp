@@ -1,10 +1,9 @@
 // Solves a scenario with the Cosserat shooting solver of an installed tcasim and prints
 // the tip position. Usage: solve_scenario [scenario.json] (default: a shipped scenario).
-#include <tcasim/tcasim.hpp>
-
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <tcasim/tcasim.hpp>
 
 int main(int argc, char** argv) {
   const std::string file = argc > 1 ? argv[1] : DEFAULT_SCENARIO;

@@ -39,28 +39,28 @@ enum class LinearSolver { kKlu, kUmfpack, kSparseLu };
 
 /// Discretization and solver settings.
 struct Options {
-  int elements = 16;                           ///< number of elements, >= 1
-  int order = 2;                               ///< Lagrange order, 1 or 2
+  int elements = 16;  ///< number of elements, >= 1
+  int order = 2;      ///< Lagrange order, 1 or 2
   Integration integration = Integration::kReduced;
   LinearSolver linear_solver = LinearSolver::kKlu;
-  double tolerance_abs = 1e-12;   ///< absolute residual tolerance [N, N m]
-  double tolerance_rel = 1e-10;   ///< relative to the load scale (see Summary::Status)
-  int max_iterations = 30;        ///< Newton iterations (linear solves) per load step
-  int max_load_steps = 200;       ///< load-step attempts (accepted + rejected)
-  double initial_load_step = 1.0; ///< first load-factor increment in (0, 1]
-  double min_load_step = 1e-6;    ///< give up when a halved increment falls below this
+  double tolerance_abs = 1e-12;    ///< absolute residual tolerance [N, N m]
+  double tolerance_rel = 1e-10;    ///< relative to the load scale (see Summary::Status)
+  int max_iterations = 30;         ///< Newton iterations (linear solves) per load step
+  int max_load_steps = 200;        ///< load-step attempts (accepted + rejected)
+  double initial_load_step = 1.0;  ///< first load-factor increment in (0, 1]
+  double min_load_step = 1e-6;     ///< give up when a halved increment falls below this
 };
 
 /// Configuration of the mesh: nodal positions, triads and string tensions.
 struct State {
-  std::vector<double> s_m;                  ///< reference arc length of each node
-  std::vector<Eigen::Vector3d> p_W_m;       ///< nodal centerline positions
-  std::vector<Eigen::Quaterniond> q_WB;     ///< nodal triads (unit quaternions)
-  std::vector<double> tensions_N;           ///< per actuator, tension of one string
+  std::vector<double> s_m;               ///< reference arc length of each node
+  std::vector<Eigen::Vector3d> p_W_m;    ///< nodal centerline positions
+  std::vector<Eigen::Quaterniond> q_WB;  ///< nodal triads (unit quaternions)
+  std::vector<double> tensions_N;        ///< per actuator, tension of one string
   /// With a tip_constraint: the force the holder applies to the rod at the tip (world frame);
   /// along the normal for a normal-only contact. Zero without a constraint.
   Eigen::Vector3d tip_reaction_W_N = Eigen::Vector3d::Zero();
-  double load_factor = 0.0;                 ///< lambda of the last accepted load step
+  double load_factor = 0.0;  ///< lambda of the last accepted load step
 };
 
 /// Outcome of a solve.
@@ -70,32 +70,33 @@ struct Summary {
     /// + floor_i, where r holds nodal forces [N], moments [N m] and TCA rows T_i - F_tca
     /// [N] and tip-constraint rows k_c (c_j . (p_tip - p_target(lambda))) [N] (k_c =
     /// max(EA, GA)/L, c_j the held world directions); scale = max(||f_ext||_inf, max_i c_i
-    /// |T_i|, ||tip reaction||_inf) (external nodal loads incl. the tip moment); floor_i is the round-off level of the row (Discretization::round_off_floor:
+    /// |T_i|, ||tip reaction||_inf) (external nodal loads incl. the tip moment); floor_i is the
+    /// round-off level of the row (Discretization::round_off_floor:
     /// 10 eps nodes max(EA, GA) for force and TCA rows, 10 eps nodes max(EI, GJ)/L plus
     /// that times h for moment rows; constraint rows as force rows).
     kConverged,
-    kStepTooSmall,       ///< a load increment halved below Options::min_load_step failed
-    kLoadStepLimit,      ///< Options::max_load_steps attempts without reaching lambda = 1
-    kNotRun,             ///< a default-constructed summary: no solve filled it
+    kStepTooSmall,   ///< a load increment halved below Options::min_load_step failed
+    kLoadStepLimit,  ///< Options::max_load_steps attempts without reaching lambda = 1
+    kNotRun,         ///< a default-constructed summary: no solve filled it
   };
   Status status = Status::kNotRun;
   bool converged() const { return status == Status::kConverged; }
-  int load_steps = 0;          ///< accepted load steps
-  int rejected_steps = 0;      ///< failed (halved) load steps
-  int iterations = 0;          ///< Newton and chord iterations (linear solves), all steps
+  int load_steps = 0;      ///< accepted load steps
+  int rejected_steps = 0;  ///< failed (halved) load steps
+  int iterations = 0;      ///< Newton and chord iterations (linear solves), all steps
   /// ||r||_inf of the returned state at its load factor [N, N m] (+inf when it cannot be
   /// evaluated there).
   double residual_inf = 0.0;
-  double residual_scale = 0.0; ///< scale of the relative tolerance
+  double residual_scale = 0.0;  ///< scale of the relative tolerance
   /// The residual both methods report (rod::Result::residual, docs/scenario-format.md): at
   /// the returned state and load factor 1, max_i |r_i| / F_c over the force, TCA and
   /// constraint rows and max |r_i| / (L F_c) over the moment rows, F_c =
   /// characteristic_force_N; empty when the residual cannot be evaluated there (or no solve ran).
   std::optional<double> equilibrium_residual;
   double characteristic_force_N = 0.0;  ///< F_c of the solve's loads (rod::characteristic_force_N)
-  double load_factor = 0.0;    ///< lambda reached
+  double load_factor = 0.0;             ///< lambda reached
   double wall_time_s = 0.0;
-  std::string message;         ///< why it stopped (empty when converged)
+  std::string message;  ///< why it stopped (empty when converged)
 };
 
 /// "converged", "step_too_small", "load_step_limit" or "not_run".
@@ -104,9 +105,9 @@ const char* to_string(Summary::Status s);
 /// Element-level quantities (for tests): residual and consistent tangent in the
 /// element's nodal increments (dp_a, dtheta_a) per node, strings at fixed tensions.
 struct ElementEvaluation {
-  Eigen::VectorXd residual;              ///< 6 (order + 1)
-  Eigen::MatrixXd tangent;               ///< d residual / d increments
-  std::vector<double> lengths_m;         ///< element share of each string length
+  Eigen::VectorXd residual;                       ///< 6 (order + 1)
+  Eigen::MatrixXd tangent;                        ///< d residual / d increments
+  std::vector<double> lengths_m;                  ///< element share of each string length
   std::vector<Eigen::VectorXd> length_gradients;  ///< d l_i / d increments
 };
 
@@ -197,8 +198,8 @@ class Discretization {
   int elements_, order_;
   double h_m_;
   Quadrature quad_;
-  std::vector<int> tca_actuators_;  // actuator index of each TCA unknown
-  std::vector<int> tca_unknown_;    // per actuator: its TCA unknown or -1
+  std::vector<int> tca_actuators_;   // actuator index of each TCA unknown
+  std::vector<int> tca_unknown_;     // per actuator: its TCA unknown or -1
   Eigen::VectorXd nodal_dead_load_;  // gravity + tip force on free-node dofs (lambda = 1)
   std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position
@@ -210,7 +211,7 @@ class Discretization {
   void evaluate_element(const State& state, int e, const std::vector<double>& tensions_N,
                         bool with_tangent, ElementEvaluation& out) const;
   mutable std::vector<int> element_slots_;  // per element, (6 n)^2 value indices or -1
-  mutable std::vector<int> tca_slots_;      // per TCA unknown: row then column entries, then diagonal
+  mutable std::vector<int> tca_slots_;  // per TCA unknown: row then column entries, then diagonal
   mutable std::vector<int> constraint_slots_;  // per held direction: 3 row, then 3 column entries
 };
 
@@ -220,20 +221,22 @@ class Discretization {
 /// gravity, tip wrench and tension drives scale with lambda; TCA temperatures ramp from the
 /// material's reference temperature to their targets; a tip_constraint's target moves from the
 /// stress-free tip p_ref to p_ref + lambda (p_target - p_ref) (along the normal for a contact).
-/// A step from the unloaded state starts from the constant-strain predictor (constant_strain_guess); later steps from the secant extrapolation of the last
-/// two accepted states (a failed predicted start is retried from the last accepted state).
-/// Each step runs Newton with full steps (backtracking only out of the model's domain); once
-/// the residual contracts by 1e-2 per iteration the last factorization is reused (chord steps)
-/// until the contraction degrades. KLU pivots once and then refactorizes with that pivot order
-/// while its condition estimate holds. Throws InputError for bad options; never throws for
-/// non-convergence: `state` then holds the last accepted configuration.
+/// A step from the unloaded state starts from the constant-strain predictor
+/// (constant_strain_guess); later steps from the secant extrapolation of the last two accepted
+/// states (a failed predicted start is retried from the last accepted state). Each step runs Newton
+/// with full steps (backtracking only out of the model's domain); once the residual contracts by
+/// 1e-2 per iteration the last factorization is reused (chord steps) until the contraction
+/// degrades. KLU pivots once and then refactorizes with that pivot order while its condition
+/// estimate holds. Throws InputError for bad options; never throws for non-convergence: `state`
+/// then holds the last accepted configuration.
 ///
 /// `loads` replace the model's own (drive tensions and temperatures, tip wrench, gravity;
 /// loads.applied(model) with its load scale; InputError naming the field when they do not fit
 /// the model). A state converged at load factor 1 (for any loads, on the same mesh) is a warm
 /// start: one Newton solve at the new loads, and the ramp from the reference configuration
 /// only if that fails. This is how a sweep runs on the FE: one State across its points.
-Summary solve(const rod::RodModel& model, const rod::Loads& loads, const Options& options, State& state);
+Summary solve(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
+              State& state);
 /// Solves the model's own loads: solve(model, rod::Loads::from_model(model), options, state).
 Summary solve(const rod::RodModel& model, const Options& options, State& state);
 

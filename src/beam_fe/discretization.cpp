@@ -1,8 +1,9 @@
 // Mesh, degrees of freedom and global assembly of the beam FE problem.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 
 #include "beam_fe/beam_fe.hpp"
@@ -19,7 +20,8 @@ using Eigen::VectorXd;
 
 /// The TCA row of one string: phi(T, delta) with coil contact (tca::contact_residual), zero
 /// where the tension T and the elongation delta satisfy the TCA law.
-tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m, double lambda) {
+tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m,
+                             double lambda) {
   std::vector<tca::Segment> segments;
   rod::ramp_segments(act.drive.tca->material(), act.drive.segments, lambda, segments);
   return tca::contact_residual(*act.drive.tca, tension_N, elongation_m, segments);
@@ -93,13 +95,15 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   // Tip constraint: held world directions (all three when pinned, the normal for a contact),
   // target ramped from the stress-free tip (exact arc of omega*, as reference_state).
   const Vector3d phi_L = model.length_m * model.reference_curvature_B_1_m;
-  tip_reference_W_m_ = model.base_position_W_m +
-                       model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
+  tip_reference_W_m_ =
+      model.base_position_W_m +
+      model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
   if (model.tip_constraint) {
     tip_goal_W_m_ = model.tip_constraint->position_W_m;
     if (model.tip_constraint->normal_W) {
       const Vector3d n = *model.tip_constraint->normal_W;
-      require(n.allFinite() && n.norm() > 0.0, "tip_constraint.normal", n.norm(), "must be non-zero");
+      require(n.allFinite() && n.norm() > 0.0, "tip_constraint.normal", n.norm(),
+              "must be non-zero");
       held_directions_W_ = {n.normalized()};
     } else {
       held_directions_W_ = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
@@ -143,7 +147,8 @@ void Discretization::retract(State& state, const VectorXd& dx) const {
   const int nodes = node_count();
   for (int k = 1; k < nodes; ++k) {
     state.p_W_m[k] += dx.segment<3>(6 * (k - 1));
-    state.q_WB[k] = (state.q_WB[k] * so3::exp_quaternion(dx.segment<3>(6 * (k - 1) + 3))).normalized();
+    state.q_WB[k] =
+        (state.q_WB[k] * so3::exp_quaternion(dx.segment<3>(6 * (k - 1) + 3))).normalized();
   }
   for (std::size_t j = 0; j < tca_actuators_.size(); ++j) {
     state.tensions_N[tca_actuators_[j]] += dx[6 * (nodes - 1) + static_cast<int>(j)];
@@ -162,7 +167,8 @@ VectorXd Discretization::difference(const State& a, const State& b) const {
     dx.segment<3>(6 * (k - 1) + 3) = so3::log(b.q_WB[k].conjugate() * a.q_WB[k]);
   }
   for (std::size_t j = 0; j < tca_actuators_.size(); ++j) {
-    dx[6 * (nodes - 1) + static_cast<int>(j)] = a.tensions_N[tca_actuators_[j]] - b.tensions_N[tca_actuators_[j]];
+    dx[6 * (nodes - 1) + static_cast<int>(j)] =
+        a.tensions_N[tca_actuators_[j]] - b.tensions_N[tca_actuators_[j]];
   }
   const int first_constraint = 6 * (nodes - 1) + static_cast<int>(tca_actuators_.size());
   for (int j = 0; j < constraint_count(); ++j) {
@@ -183,7 +189,8 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   // delta_i = L |nu + omega x r_i| - rest_i (exact for constant strains and straight strings).
   std::vector<double> T(n_act, 0.0), cT(n_act, 0.0);
   for (std::size_t i = 0; i < n_act; ++i) {
-    if (model.actuators[i].drive.type == rod::Drive::Type::kTension) T[i] = lambda * model.actuators[i].drive.tension_N;
+    if (model.actuators[i].drive.type == rod::Drive::Type::kTension)
+      T[i] = lambda * model.actuators[i].drive.tension_N;
     cT[i] = model.actuators[i].count * T[i];
   }
   const std::size_t k = tca_actuators_.size();
@@ -196,8 +203,8 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
     rod::GuessTensionOptions options;
     options.tolerance_rel = 1e-13;  // far below the FE's own tolerance
     Eigen::VectorXd T_tca = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(k));
-    if (!rod::solve_guess_tensions(model, tca_actuators_, segments, Eigen::Matrix<double, 6, 1>::Zero(), options,
-                                   cT, T_tca)) {
+    if (!rod::solve_guess_tensions(model, tca_actuators_, segments,
+                                   Eigen::Matrix<double, 6, 1>::Zero(), options, cT, T_tca)) {
       return false;
     }
     for (std::size_t a = 0; a < k; ++a) T[tca_actuators_[a]] = T_tca[static_cast<Eigen::Index>(a)];
@@ -337,19 +344,23 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
         const int gi = 6 * (e * order_) + i - 6;
         if (gi < 0) continue;
         assert(gi >= first_row[gj] && gi < first_row[gj] + range_rows[gj]);
-        element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] = outer[gj] + gi - first_row[gj];
+        element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] =
+            outer[gj] + gi - first_row[gj];
       }
     }
   }
   tca_slots_.clear();
   for (int t = free_dofs; t < tca_end; ++t) {
-    for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(outer[k] + range_rows[k] + (t - free_dofs));
+    for (int k = 0; k < free_dofs; ++k)
+      tca_slots_.push_back(outer[k] + range_rows[k] + (t - free_dofs));
     for (int k = 0; k < free_dofs; ++k) tca_slots_.push_back(outer[t] + k);
     tca_slots_.push_back(outer[t] + t);
   }
   constraint_slots_.clear();
   for (int c = tca_end; c < n; ++c) {
-    for (int i = 0; i < 3; ++i) constraint_slots_.push_back(outer[tip_pos + i] + range_rows[tip_pos + i] + n_tca + (c - tca_end));
+    for (int i = 0; i < 3; ++i)
+      constraint_slots_.push_back(outer[tip_pos + i] + range_rows[tip_pos + i] + n_tca +
+                                  (c - tca_end));
     for (int i = 0; i < 3; ++i) constraint_slots_.push_back(outer[c] + i);
   }
 #ifndef NDEBUG
@@ -357,7 +368,9 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
     for (int i = 0; i < nd; ++i)
       for (int j = 0; j < nd; ++j) {
         const int gi = 6 * (e * order_) + i - 6, gj = 6 * (e * order_) + j - 6;
-        if (gi >= 0 && gj >= 0) assert(element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] == slot(K, gi, gj));
+        if (gi >= 0 && gj >= 0)
+          assert(element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] ==
+                 slot(K, gi, gj));
       }
   for (int c = tca_end; c < n; ++c)
     for (int i = 0; i < 3; ++i) {
@@ -377,7 +390,8 @@ VectorXd Discretization::residual(const State& state, double lambda,
   VectorXd r = VectorXd::Zero(n);
   double* values = nullptr;
   if (tangent) {
-    if (tangent->rows() != n || tangent->nonZeros() == 0 || element_slots_.empty()) assemble_pattern(*tangent);
+    if (tangent->rows() != n || tangent->nonZeros() == 0 || element_slots_.empty())
+      assemble_pattern(*tangent);
     values = tangent->valuePtr();
     std::fill(values, values + tangent->nonZeros(), 0.0);
   }
@@ -422,8 +436,8 @@ VectorXd Discretization::residual(const State& state, double lambda,
     const int a = tca_actuators_[j];
     const rod::Actuator& act = model.actuators[a];
     const int row = free_dofs + static_cast<int>(j);
-    const tca::ContactResidual f = tca_row(act, state.tensions_N[a], lengths[a] - act.rest_length_m,
-                                           lambda);
+    const tca::ContactResidual f =
+        tca_row(act, state.tensions_N[a], lengths[a] - act.rest_length_m, lambda);
     r[row] = f.phi_N;
     if (!tangent) continue;
     const int* slots = &tca_slots_[j * stride];

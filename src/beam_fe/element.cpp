@@ -80,14 +80,15 @@ CoefficientJet coefficient_jet(double t2) {
 
 /// v + alpha x × v + beta (x (x.v) - t2 v) with t2 = |x|^2: exp(x)^T v for (alpha, beta) =
 /// (-a, b), exp(x) v for (a, b), Jr(x) v for (-b, c), Jr(x)^T v for (b, c).
-Vector3d rotation_operator(const Vector3d& x, double t2, double alpha, double beta, const Vector3d& v) {
+Vector3d rotation_operator(const Vector3d& x, double t2, double alpha, double beta,
+                           const Vector3d& v) {
   return v + alpha * x.cross(v) + beta * (x * x.dot(v) - t2 * v);
 }
 /// Its Jacobian in x, with dalpha, dbeta the t2-derivatives of alpha, beta:
 ///   2 alpha' (x × v) x^T - alpha hat(v) + 2 beta' (x (x.v) - t2 v) x^T
 ///   + beta ((x.v) I + x v^T - 2 v x^T).
-Matrix3d rotation_operator_jacobian(const Vector3d& x, double t2, double alpha, double dalpha, double beta,
-                                    double dbeta, const Vector3d& v) {
+Matrix3d rotation_operator_jacobian(const Vector3d& x, double t2, double alpha, double dalpha,
+                                    double beta, double dbeta, const Vector3d& v) {
   const double xv = x.dot(v);
   Matrix3d J = (2.0 * dalpha * x.cross(v) + 2.0 * dbeta * (x * xv - t2 * v)) * x.transpose();
   J -= alpha * so3::hat(v);
@@ -95,15 +96,16 @@ Matrix3d rotation_operator_jacobian(const Vector3d& x, double t2, double alpha, 
   return J;
 }
 /// Hessian in x of f(t2) (x.u): 4 f'' (x.u) x x^T + 2 f' ((x.u) I + x u^T + u x^T).
-void add_linear_term_hessian(Matrix3d& H, const Vector3d& x, double f1, double f2, const Vector3d& u) {
+void add_linear_term_hessian(Matrix3d& H, const Vector3d& x, double f1, double f2,
+                             const Vector3d& u) {
   const double xu = x.dot(u);
   H += 4.0 * f2 * xu * x * x.transpose();
   H += 2.0 * f1 * (xu * Matrix3d::Identity() + x * u.transpose() + u * x.transpose());
 }
 /// Hessian in x of g(t2) Q, Q = (x.v)(x.w) - t2 (v.w), grad Q = v (x.w) + w (x.v) - 2 (v.w) x:
 ///   4 g'' Q x x^T + 2 g' (Q I + x gradQ^T + gradQ x^T) + g (v w^T + w v^T - 2 (v.w) I).
-void add_quadratic_term_hessian(Matrix3d& H, const Vector3d& x, double t2, double g, double g1, double g2,
-                                const Vector3d& v, const Vector3d& w) {
+void add_quadratic_term_hessian(Matrix3d& H, const Vector3d& x, double t2, double g, double g1,
+                                double g2, const Vector3d& v, const Vector3d& w) {
   const double xv = x.dot(v), xw = x.dot(w), vw = v.dot(w);
   const double Q = xv * xw - t2 * vw;
   const Vector3d gQ = v * xw + w * xv - 2.0 * vw * x;
@@ -115,7 +117,8 @@ void add_quadratic_term_hessian(Matrix3d& H, const Vector3d& x, double t2, doubl
 template <int kOrder>
 void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
                     const std::vector<double>& weight, double h_m_, const State& state, int e,
-                    const std::vector<double>& tensions_N, bool with_tangent, ElementEvaluation& out) {
+                    const std::vector<double>& tensions_N, bool with_tangent,
+                    ElementEvaluation& out) {
   constexpr int n = kOrder + 1;
   constexpr int nu_dofs = 6 * n;
   constexpr int order_ = kOrder;
@@ -132,8 +135,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
 
   // Node map u(theta): y_a = R_r^T (p_a - p_r), psi_a = log(R_r^T R_a).
   std::array<Vector3d, n> y, psi;
-  std::array<Matrix3d, n> A;                   // Jr^-1(psi_a)
-  std::array<std::array<Matrix3d, 3>, n> dA;   // dJr^-1/dpsi_k
+  std::array<Matrix3d, n> A;                  // Jr^-1(psi_a)
+  std::array<std::array<Matrix3d, 3>, n> dA;  // dJr^-1/dpsi_k
   for (int a = 0; a < n; ++a) {
     // Relative to the reference node (y' is unchanged since sum_a N_a' = 0): keeps the
     // moment rows free of |p| times the force round-off.
@@ -181,8 +184,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     const Vector3d omega = rotation_operator(ps, t2, -k0.b, k0.c, pp);  // Jr(psi) psi'
     const Matrix3d Kp = so3::hat(ps);
     const Matrix3d Kp2 = Kp * Kp;
-    const Matrix3d E_val = Matrix3d::Identity() + k0.a * Kp + k0.b * Kp2;    // exp(psi)
-    const Matrix3d Jr_val = Matrix3d::Identity() - k0.b * Kp + k0.c * Kp2;   // Jr(psi)
+    const Matrix3d E_val = Matrix3d::Identity() + k0.a * Kp + k0.b * Kp2;   // exp(psi)
+    const Matrix3d Jr_val = Matrix3d::Identity() - k0.b * Kp + k0.c * Kp2;  // Jr(psi)
     // Constitutive law and strings: sigma = dW/deps, C = d2W/deps2.
     // [Pawlowski2019] Eqs. (11)-(12): n_B = K_nu (nu - e3), m_B = K_omega (omega - omega*).
     Vector6d sigma;
@@ -225,7 +228,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     }
     const Vector9d grad_g = F.transpose().lazyProduct(sigma);
     grad_u.noalias() += Gm.transpose().lazyProduct(wj * grad_g);
-    for (std::size_t i = 0; i < n_act; ++i) dl_u[i].noalias() += Gm.transpose().lazyProduct(wj * F.transpose().lazyProduct(dl_eps[i]));
+    for (std::size_t i = 0; i < n_act; ++i)
+      dl_u[i].noalias() += Gm.transpose().lazyProduct(wj * F.transpose().lazyProduct(dl_eps[i]));
     if (!with_tangent) continue;
 
     // S = sum_k sigma_k d2 eps_k / dg2: only blocks involving psi are non-zero.
@@ -283,28 +287,37 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   }
   out.residual = B.transpose().lazyProduct(grad_u);
   out.length_gradients.resize(n_act);
-  for (std::size_t i = 0; i < n_act; ++i) out.length_gradients[i] = B.transpose().lazyProduct(dl_u[i]);
+  for (std::size_t i = 0; i < n_act; ++i)
+    out.length_gradients[i] = B.transpose().lazyProduct(dl_u[i]);
   if (!with_tangent) return;
   // K = B^T H B using the block sparsity of B (at most three 3x3 blocks per block row).
   MatrixU HB = MatrixU::Zero();
   for (int a = 0; a < n; ++a) {
     if (a == ref) continue;
-    const Eigen::Matrix<double, nu_dofs, 3> HyR = hess_u.template middleCols<3>(3 * a).lazyProduct(R_ref.transpose());
+    const Eigen::Matrix<double, nu_dofs, 3> HyR =
+        hess_u.template middleCols<3>(3 * a).lazyProduct(R_ref.transpose());
     HB.template middleCols<3>(6 * a) += HyR;
     HB.template middleCols<3>(dr) -= HyR;
-    HB.template middleCols<3>(phr).noalias() += hess_u.template middleCols<3>(3 * a).lazyProduct(so3::hat(y[a]));
-    HB.template middleCols<3>(6 * a + 3).noalias() += hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a]);
-    HB.template middleCols<3>(phr).noalias() -= hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a].transpose());
+    HB.template middleCols<3>(phr).noalias() +=
+        hess_u.template middleCols<3>(3 * a).lazyProduct(so3::hat(y[a]));
+    HB.template middleCols<3>(6 * a + 3).noalias() +=
+        hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a]);
+    HB.template middleCols<3>(phr).noalias() -=
+        hess_u.template middleCols<3>(3 * n + 3 * a).lazyProduct(A[a].transpose());
   }
   MatrixU K = MatrixU::Zero();
   for (int a = 0; a < n; ++a) {
     if (a == ref) continue;
-    const Eigen::Matrix<double, 3, nu_dofs> RHy = R_ref.lazyProduct(HB.template middleRows<3>(3 * a));
+    const Eigen::Matrix<double, 3, nu_dofs> RHy =
+        R_ref.lazyProduct(HB.template middleRows<3>(3 * a));
     K.template middleRows<3>(6 * a) += RHy;
     K.template middleRows<3>(dr) -= RHy;
-    K.template middleRows<3>(phr).noalias() += so3::hat(y[a]).transpose().lazyProduct(HB.template middleRows<3>(3 * a));
-    K.template middleRows<3>(6 * a + 3).noalias() += A[a].transpose().lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
-    K.template middleRows<3>(phr).noalias() -= A[a].lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
+    K.template middleRows<3>(phr).noalias() +=
+        so3::hat(y[a]).transpose().lazyProduct(HB.template middleRows<3>(3 * a));
+    K.template middleRows<3>(6 * a + 3).noalias() +=
+        A[a].transpose().lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
+    K.template middleRows<3>(phr).noalias() -=
+        A[a].lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
   }
   // Second derivatives of u(theta) contracted with dE/du.
   for (int a = 0; a < n; ++a) {
@@ -354,12 +367,15 @@ ElementEvaluation Discretization::element(const State& state, int e,
   return out;
 }
 
-void Discretization::evaluate_element(const State& state, int e, const std::vector<double>& tensions_N,
-                                      bool with_tangent, ElementEvaluation& out) const {
+void Discretization::evaluate_element(const State& state, int e,
+                                      const std::vector<double>& tensions_N, bool with_tangent,
+                                      ElementEvaluation& out) const {
   if (order_ == 1) {
-    element_kernel<1>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent, out);
+    element_kernel<1>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent,
+                      out);
   } else {
-    element_kernel<2>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent, out);
+    element_kernel<2>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent,
+                      out);
   }
 }
 

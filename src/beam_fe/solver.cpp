@@ -1,10 +1,11 @@
 // Newton's method with backtracking line search and adaptive load stepping.
+#include <fmt/format.h>
+
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
-#include <limits>
 #include <cmath>
-#include <fmt/format.h>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -57,7 +58,8 @@ class KluRefactoring {
       if (!symbolic_) return false;
     }
     if (numeric_) {
-      if (klu_refactor(Ap, Ai, Ax, symbolic_, numeric_, &common_) && klu_rcond(symbolic_, numeric_, &common_) &&
+      if (klu_refactor(Ap, Ai, Ax, symbolic_, numeric_, &common_) &&
+          klu_rcond(symbolic_, numeric_, &common_) &&
           common_.rcond >= kRefactorRcondRatio * rcond_full_) {
         return true;
       }
@@ -71,7 +73,8 @@ class KluRefactoring {
   /// Solves K x = b with the last factorization; false on failure.
   bool solve(const VectorXd& b, VectorXd& x) {
     x = b;
-    return numeric_ && klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_) &&
+    return numeric_ &&
+           klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_) &&
            common_.status == KLU_OK;
   }
 
@@ -163,8 +166,8 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
   disc.apply_prescribed_tensions(st, lambda);
   VectorXd r;
   if (!evaluate(disc, st, lambda, &K, r, &out.why)) return out;
-  bool have_tangent = true;   // K is the tangent at st
-  bool factored = false;      // `linear` holds a factorization of an earlier tangent of this step
+  bool have_tangent = true;  // K is the tangent at st
+  bool factored = false;     // `linear` holds a factorization of an earlier tangent of this step
   double contraction = std::numeric_limits<double>::infinity();  // ||r_k||/||r_k-1||, inf norms
   for (int it = 0;; ++it) {
     out.residual_inf = r.lpNorm<Eigen::Infinity>();
@@ -217,7 +220,8 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
       VectorXd rt;
       if (!evaluate(disc, trial, lambda, trial_tangent ? &K : nullptr, rt, &trial_why)) continue;
       st = std::move(trial);
-      contraction = rt.lpNorm<Eigen::Infinity>() / std::max(out.residual_inf, std::numeric_limits<double>::min());
+      contraction = rt.lpNorm<Eigen::Infinity>() /
+                    std::max(out.residual_inf, std::numeric_limits<double>::min());
       r = std::move(rt);
       have_tangent = trial_tangent;
       accepted = true;
@@ -246,10 +250,14 @@ double equilibrium_residual(const Discretization& disc, const VectorXd& r, doubl
 
 const char* to_string(Summary::Status s) {
   switch (s) {
-    case Summary::Status::kConverged: return "converged";
-    case Summary::Status::kStepTooSmall: return "step_too_small";
-    case Summary::Status::kLoadStepLimit: return "load_step_limit";
-    case Summary::Status::kNotRun: return "not_run";
+    case Summary::Status::kConverged:
+      return "converged";
+    case Summary::Status::kStepTooSmall:
+      return "step_too_small";
+    case Summary::Status::kLoadStepLimit:
+      return "load_step_limit";
+    case Summary::Status::kNotRun:
+      return "not_run";
   }
   return "unknown";
 }
@@ -258,7 +266,8 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
   return solve(model, rod::Loads::from_model(model), options, state);
 }
 
-Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Options& options, State& state) {
+Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Options& options,
+              State& state) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
   // The discretization reads the loads from its model: a copy carrying `loads`.
@@ -298,7 +307,8 @@ Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Opti
         predicted = disc.constant_strain_guess(target, trial);
       } else if (lambda_previous >= 0.0 && lambda > lambda_previous) {
         // Secant predictor: x(target) ~ x(lambda) + (target - lambda)/(lambda - lambda_prev) dx.
-        disc.retract(trial, (target - lambda) / (lambda - lambda_previous) * disc.difference(state, previous));
+        disc.retract(trial, (target - lambda) / (lambda - lambda_previous) *
+                                disc.difference(state, previous));
         predicted = true;
       }
     }
@@ -342,21 +352,23 @@ Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Opti
     step *= 0.5;
     if (step < options.min_load_step || step == 0.0) {
       summary.status = Summary::Status::kStepTooSmall;
-      summary.message = fmt::format(
-          "load step halved below {:.3g} at load factor {:.6g}: {}", options.min_load_step, lambda,
-          last.why);
+      summary.message = fmt::format("load step halved below {:.3g} at load factor {:.6g}: {}",
+                                    options.min_load_step, lambda, last.why);
       break;
     }
   }
   summary.load_factor = lambda;
-  summary.characteristic_force_N = rod::characteristic_force_N(model, rod::Loads::from_model(model));
+  summary.characteristic_force_N =
+      rod::characteristic_force_N(model, rod::Loads::from_model(model));
   if (summary.converged()) {
-    summary.equilibrium_residual = equilibrium_residual(disc, last.residual, summary.characteristic_force_N);
+    summary.equilibrium_residual =
+        equilibrium_residual(disc, last.residual, summary.characteristic_force_N);
   } else {
     // Report the residual of the returned (last accepted) state at its load factor.
     VectorXd r;
-    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r) ? r.lpNorm<Eigen::Infinity>()
-                                                                             : std::numeric_limits<double>::infinity();
+    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r)
+                               ? r.lpNorm<Eigen::Infinity>()
+                               : std::numeric_limits<double>::infinity();
     if (evaluate(disc, state, 1.0, nullptr, r)) {
       summary.equilibrium_residual = equilibrium_residual(disc, r, summary.characteristic_force_N);
     }
@@ -373,8 +385,8 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
   return make_result(model, rod::Loads::from_model(model), options, state, summary);
 }
 
-rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in, const Options& options,
-                        const State& state, const Summary& summary) {
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
+                        const Options& options, const State& state, const Summary& summary) {
   loads_in.validate(model);
   const rod::Loads loads = loads_in.applied(model);
   rod::Result res;
@@ -404,10 +416,11 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in, 
   if (model.tip_constraint) res.tip_reaction_force_W_N = state.tip_reaction_W_N;
   res.centerline_s_m = state.s_m;
   res.centerline_p_W_m = state.p_W_m;
-  for (const Eigen::Quaterniond& q : state.q_WB) res.centerline_R_WB.push_back(q.toRotationMatrix());
+  for (const Eigen::Quaterniond& q : state.q_WB)
+    res.centerline_R_WB.push_back(q.toRotationMatrix());
   try {
-    res.bending_radius_m =
-        rod::three_point_inner_radius(model, res.centerline_s_m, res.centerline_p_W_m, res.centerline_R_WB);
+    res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
+                                                         res.centerline_p_W_m, res.centerline_R_WB);
   } catch (const DomainError&) {
     // A custom section has no outline: the radius metric is undefined, left empty.
     res.bending_radius_m.reset();

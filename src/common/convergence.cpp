@@ -8,7 +8,8 @@
 
 namespace tcasim {
 
-std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors) {
+std::vector<double> observed_orders(const std::vector<double>& h,
+                                    const std::vector<double>& errors) {
   if (h.size() != errors.size()) {
     throw std::invalid_argument(
         fmt::format("observed_orders: {} step sizes but {} errors", h.size(), errors.size()));
@@ -19,8 +20,9 @@ std::vector<double> observed_orders(const std::vector<double>& h, const std::vec
   for (std::size_t i = 0; i + 1 < h.size(); ++i) {
     if (!(h[i] > 0.0) || !(h[i + 1] > 0.0) || h[i] == h[i + 1] || !std::isfinite(h[i]) ||
         !std::isfinite(h[i + 1])) {
-      throw std::invalid_argument(fmt::format(
-          "observed_orders: h[{}] = {}, h[{}] = {} must be positive and distinct", i, h[i], i + 1, h[i + 1]));
+      throw std::invalid_argument(
+          fmt::format("observed_orders: h[{}] = {}, h[{}] = {} must be positive and distinct", i,
+                      h[i], i + 1, h[i + 1]));
     }
     const bool usable = errors[i] > 0.0 && errors[i + 1] > 0.0 && std::isfinite(errors[i]) &&
                         std::isfinite(errors[i + 1]);

@@ -10,6 +10,7 @@ namespace tcasim {
 /// error gives NaN (which fails any bracket). Throws std::invalid_argument if the
 /// sizes differ, fewer than 2 levels are given, or h is not positive, finite and distinct
 /// between successive levels.
-std::vector<double> observed_orders(const std::vector<double>& h, const std::vector<double>& errors);
+std::vector<double> observed_orders(const std::vector<double>& h,
+                                    const std::vector<double>& errors);
 
 }  // namespace tcasim

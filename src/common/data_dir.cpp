@@ -32,8 +32,9 @@ std::filesystem::path own_module_folder() {
     module = map->l_name;
   }
   std::error_code ec;
-  const std::filesystem::path path = module.empty() ? std::filesystem::read_symlink("/proc/self/exe", ec)
-                                                    : std::filesystem::canonical(module, ec);
+  const std::filesystem::path path = module.empty()
+                                         ? std::filesystem::read_symlink("/proc/self/exe", ec)
+                                         : std::filesystem::canonical(module, ec);
   return ec ? std::filesystem::path() : path.parent_path();
 }
 

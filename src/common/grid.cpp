@@ -18,7 +18,8 @@ std::vector<double> inclusive_grid(double lo, double hi, double step, const std:
   require(count < 1e6, key, text, "gives more than a million points");
   std::vector<double> grid;
   grid.reserve(static_cast<std::size_t>(count) + 1);
-  for (long i = 0; i <= static_cast<long>(count); ++i) grid.push_back(lo + static_cast<double>(i) * step);
+  for (long i = 0; i <= static_cast<long>(count); ++i)
+    grid.push_back(lo + static_cast<double>(i) * step);
   return grid;
 }
 

@@ -51,7 +51,8 @@ struct CvodeDeleter {
 using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
 using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using LinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
 using NonlinearSolverPtr =
     std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinearSolverDeleter>;
 using CvodeMemPtr = std::unique_ptr<void, CvodeDeleter>;
@@ -73,7 +74,8 @@ std::string cvode_ls_flag_name(int flag) {
 
 /// Converts a failed CVODE setup call into ExternalError.
 void check_cvode(int flag, const char* call) {
-  if (flag < 0) throw ExternalError(fmt::format("SUNDIALS {} failed: {}", call, cvode_flag_name(flag)));
+  if (flag < 0)
+    throw ExternalError(fmt::format("SUNDIALS {} failed: {}", call, cvode_flag_name(flag)));
 }
 
 template <class T>
@@ -94,8 +96,8 @@ void validate(int dimension, const IntegratorOptions& o) {
   } else {
     require(o.relative_tolerance > 0.0, "relative_tolerance", o.relative_tolerance, "must be > 0");
     require(o.absolute_tolerance > 0.0, "absolute_tolerance", o.absolute_tolerance, "must be > 0");
-    require(o.max_internal_steps >= 1, "max_internal_steps", static_cast<double>(o.max_internal_steps),
-            "must be >= 1");
+    require(o.max_internal_steps >= 1, "max_internal_steps",
+            static_cast<double>(o.max_internal_steps), "must be >= 1");
   }
 }
 
@@ -108,10 +110,14 @@ double output_point(double s0, double s1, int k, int M) {
 
 const char* to_string(Method m) {
   switch (m) {
-    case Method::kRk4: return "rk4";
-    case Method::kRk6: return "rk6";
-    case Method::kRk8: return "rk8";
-    case Method::kCvode: return "cvode";
+    case Method::kRk4:
+      return "rk4";
+    case Method::kRk6:
+      return "rk6";
+    case Method::kRk8:
+      return "rk8";
+    case Method::kCvode:
+      return "cvode";
   }
   return "unknown";
 }
@@ -227,10 +233,9 @@ void Integrator::Impl::cvode_error_handler(int code, const char* module, const c
                                            char* msg, void* user_data) {
   // Keep the text for the summary instead of printing it to stderr.
   auto* self = static_cast<Impl*>(user_data);
-  self->last_cvode_message = fmt::format("{} {} ({}): {}", module != nullptr ? module : "",
-                                         function != nullptr ? function : "",
-                                         code == CV_WARNING ? "warning" : cvode_flag_name(code),
-                                         msg != nullptr ? msg : "");
+  self->last_cvode_message = fmt::format(
+      "{} {} ({}): {}", module != nullptr ? module : "", function != nullptr ? function : "",
+      code == CV_WARNING ? "warning" : cvode_flag_name(code), msg != nullptr ? msg : "");
 }
 
 void Integrator::Impl::rk4_step(const RhsFunction& f, double s, double h, double s_next,
@@ -339,13 +344,14 @@ Tableau tableau(Method m) {
   } else if (m == Method::kRk6) {
     t.stages = 7;
     t.a.assign(49, 0.0);
-    const double rows[7][6] = {{0, 0, 0, 0, 0, 0},
-                               {1.0 / 3.0, 0, 0, 0, 0, 0},
-                               {0, 2.0 / 3.0, 0, 0, 0, 0},
-                               {1.0 / 12.0, 1.0 / 3.0, -1.0 / 12.0, 0, 0, 0},
-                               {-1.0 / 16.0, 9.0 / 8.0, -3.0 / 16.0, -3.0 / 8.0, 0, 0},
-                               {0, 9.0 / 8.0, -3.0 / 8.0, -3.0 / 4.0, 0.5, 0},
-                               {9.0 / 44.0, -9.0 / 11.0, 63.0 / 44.0, 18.0 / 11.0, 0, -16.0 / 11.0}};
+    const double rows[7][6] = {
+        {0, 0, 0, 0, 0, 0},
+        {1.0 / 3.0, 0, 0, 0, 0, 0},
+        {0, 2.0 / 3.0, 0, 0, 0, 0},
+        {1.0 / 12.0, 1.0 / 3.0, -1.0 / 12.0, 0, 0, 0},
+        {-1.0 / 16.0, 9.0 / 8.0, -3.0 / 16.0, -3.0 / 8.0, 0, 0},
+        {0, 9.0 / 8.0, -3.0 / 8.0, -3.0 / 4.0, 0.5, 0},
+        {9.0 / 44.0, -9.0 / 11.0, 63.0 / 44.0, 18.0 / 11.0, 0, -16.0 / 11.0}};
     for (int i = 0; i < 7; ++i) {
       for (int j = 0; j < i; ++j) t.a[7 * i + j] = rows[i][j];
     }
@@ -401,8 +407,10 @@ IntegrationSummary Integrator::Impl::integrate_fixed(const RhsFunction& f, doubl
       summary.status = IntegrationSummary::Status::kFailed;
       summary.message = fmt::format(
           "{}: the state became non-finite in step {} of {} (s = {} -> {}); y is left at s = {}",
-          method == Method::kRk8 ? "RK8" : method == Method::kRk6 ? "RK6" : "RK4", i + 1, n_steps,
-          s, s_next, s);
+          method == Method::kRk8   ? "RK8"
+          : method == Method::kRk6 ? "RK6"
+                                   : "RK4",
+          i + 1, n_steps, s, s_next, s);
       return summary;
     }
     y = y_next;
@@ -485,7 +493,7 @@ IntegrationSummary Integrator::integrate(const RhsFunction& f, double s0, double
                      fmt::format("must equal the integrator dimension {}", impl_->dimension));
   if (!y.allFinite()) throw InputError("y", "(non-finite entries)", "must be finite at s0");
   return is_fixed_step(impl_->options.method) ? impl_->integrate_fixed(f, s0, s1, y, observer)
-                                               : impl_->integrate_cvode(f, s0, s1, y, observer);
+                                              : impl_->integrate_cvode(f, s0, s1, y, observer);
 }
 
 }  // namespace tcasim::ode

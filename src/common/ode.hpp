@@ -17,7 +17,7 @@ using RhsFunction = std::function<void(double s, const Eigen::VectorXd& y, Eigen
 using Observer = std::function<void(double s, const Eigen::VectorXd& y)>;
 
 enum class Method {
-  kRk4,    ///< classical fourth-order Runge-Kutta, `steps` equal steps
+  kRk4,  ///< classical fourth-order Runge-Kutta, `steps` equal steps
   /// Butcher's seven-stage explicit Runge-Kutta method of order six ([Butcher2008], nodes
   /// c = 0, 1/3, 2/3, 1/3, 1/2, 1/2, 1), `steps` equal steps: 7/4 of RK4's cost per step,
   /// far fewer steps for a given error on smooth problems.

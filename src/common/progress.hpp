@@ -21,8 +21,8 @@ struct ProgressOptions {
 class ProgressReporter {
  public:
   /// Terminal mode when `stream` is a terminal (isatty).
-  ProgressReporter(std::FILE* stream, std::string label, std::size_t total, std::string unit = "points",
-                   ProgressOptions options = {});
+  ProgressReporter(std::FILE* stream, std::string label, std::size_t total,
+                   std::string unit = "points", ProgressOptions options = {});
   /// Explicit mode (tests; `interactive` = terminal mode).
   ProgressReporter(std::FILE* stream, std::string label, std::size_t total, std::string unit,
                    ProgressOptions options, bool interactive);

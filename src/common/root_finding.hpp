@@ -60,7 +60,10 @@ std::optional<RootResult> brent(F&& f, double a, double b, double fa, double fb,
         p = s * (2.0 * m * qa * (qa - r) - (b - a) * (r - 1.0));
         q = (qa - 1.0) * (r - 1.0) * (s - 1.0);
       }
-      if (p > 0.0) q = -q; else p = -p;
+      if (p > 0.0)
+        q = -q;
+      else
+        p = -p;
       // Accept the step only if it stays well inside the bracket and shrinks fast enough.
       if (2.0 * p < std::min(3.0 * m * q - std::abs(tol * q), std::abs(e * q))) {
         e = d;

@@ -9,10 +9,10 @@
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 using internal::hat;
 
@@ -92,8 +92,8 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
         for (int l = 0; l < n_tca; ++l) {
           const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
           // d delta_k / d T_l = -L C_kl c_l (closed form)
-          const double C = 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
-                           ri.x() * rl.x() / K_omega.y();
+          const double C =
+              1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() + ri.x() * rl.x() / K_omega.y();
           (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) - c.dphi_ddelta_N_m * L * C * count[act_of[l]];
         }
       }
@@ -178,7 +178,8 @@ void ShootingSolver::Impl::load_strains(const Vec3& nu, const Vec3& omega, Vec6&
     const Vec3 n = tail * f_ext_W;
     const Vec3 m = (c_tail - tail * p[k]).cross(f_ext_W);
     Vec6 d;
-    d << K_nu_inv.cwiseProduct(R[k].transpose() * n), K_omega_inv.cwiseProduct(R[k].transpose() * m);
+    d << K_nu_inv.cwiseProduct(R[k].transpose() * n),
+        K_omega_inv.cwiseProduct(R[k].transpose() * m);
     mean += (k == 0 || k == N ? 0.5 : 1.0) / N * d;
     if (k == 0) base = d;
   }

@@ -36,7 +36,7 @@ class IntegrationLevel {
  private:
   std::optional<ode::Integrator> flat_, flat_sens_;  // Kinematics::kFlat
   std::optional<LieGroupRk4> lie_, lie_sens_;        // Kinematics::kLieGroup
-  int every_ = 1;  // Lie group: observe every every_-th step node
+  int every_ = 1;                                    // Lie group: observe every every_-th step node
 };
 
 }  // namespace tcasim::cosserat::internal

@@ -51,11 +51,14 @@ int unknown_index(const rod::RodModel& m, int i) {
 void require_uniform_temperature(const rod::RodModel& m, int i) {
   const rod::Drive& d = m.actuators[i].drive;
   if (d.type != rod::Drive::Type::kTca || !d.segmented) return;
-  throw InputError("actuators[" + std::to_string(i) + "].drive.segments",
-                   "(" + std::to_string(d.segments.size()) + " segments)",
-                   "cannot be adjusted by the inverse and grasp solvers, which set one temperature per "
-                   "TCA: give '" + m.actuators[i].name + "' a uniform temperature_degC, or leave it out "
-                   "of the adjusted actuators");
+  throw InputError(
+      "actuators[" + std::to_string(i) + "].drive.segments",
+      "(" + std::to_string(d.segments.size()) + " segments)",
+      "cannot be adjusted by the inverse and grasp solvers, which set one temperature per "
+      "TCA: give '" +
+          m.actuators[i].name +
+          "' a uniform temperature_degC, or leave it out "
+          "of the adjusted actuators");
 }
 
 double get_variable(const rod::RodModel& m, const Actuation& a, int i) {
@@ -91,7 +94,8 @@ Eigen::Matrix<double, 6, 1> pose_difference(const Eigen::VectorXd& ya, const Eig
 /// -dF/dT while the coils are open, 0 while they are closed.
 double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double tension_N,
                    double delta_m) {
-  return tca::contact_residual(*m.actuators[i].drive.tca, tension_N, delta_m, a.actuators[i].segments)
+  return tca::contact_residual(*m.actuators[i].drive.tca, tension_N, delta_m,
+                               a.actuators[i].segments)
       .dphi_dT_N_K;
 }
 
@@ -126,10 +130,14 @@ using namespace inverse_internal;
 
 const char* to_string(InverseResult::Status s) {
   switch (s) {
-    case InverseResult::Status::kConverged: return "converged";
-    case InverseResult::Status::kUnreachable: return "unreachable";
-    case InverseResult::Status::kMaxIterations: return "max_iterations";
-    case InverseResult::Status::kForwardFailed: return "forward_failed";
+    case InverseResult::Status::kConverged:
+      return "converged";
+    case InverseResult::Status::kUnreachable:
+      return "unreachable";
+    case InverseResult::Status::kMaxIterations:
+      return "max_iterations";
+    case InverseResult::Status::kForwardFailed:
+      return "forward_failed";
   }
   return "unknown";
 }
@@ -162,13 +170,16 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
           options.temperature_tolerance_K, "must be > 0");
   int act = -1, n_tca = 0;
   for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
-    if (is_tca(model, i)) { act = i; ++n_tca; }
+    if (is_tca(model, i)) {
+      act = i;
+      ++n_tca;
+    }
   }
   require(n_tca == 1, "actuators", n_tca, "grasp needs exactly one TCA-driven actuator per finger");
   require_uniform_temperature(model, act);
   Eigen::VectorXd lo, hi;
-  actuation_bounds(model, {act}, options.max_temperature_K,
-                   std::numeric_limits<double>::infinity(), lo, hi);
+  actuation_bounds(model, {act}, options.max_temperature_K, std::numeric_limits<double>::infinity(),
+                   lo, hi);
   const double t_lo = lo[0], t_hi = hi[0];
 
   GraspResult res;
@@ -188,12 +199,12 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
       res.temperature_K = t_hi;
       res.blocked_normal_force_N = f_max;
       if (hot.tip_state.size() > 0) res.tip_position_W_m = hot.tip_state.segment<3>(kP);
-      res.message = std::isfinite(f_max)
-                        ? "not reachable: the blocked-tip normal force at the maximum temperature " +
-                              format_value(units::K_to_degC(t_hi)) + " degC is " +
-                              format_value(f_max) + " N, below the required " +
-                              format_value(F_req) + " N"
-                        : "the blocked-tip solve at the maximum temperature did not converge";
+      res.message =
+          std::isfinite(f_max)
+              ? "not reachable: the blocked-tip normal force at the maximum temperature " +
+                    format_value(units::K_to_degC(t_hi)) + " degC is " + format_value(f_max) +
+                    " N, below the required " + format_value(F_req) + " N"
+              : "the blocked-tip solve at the maximum temperature did not converge";
       return res;
     }
   }
@@ -231,8 +242,8 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
       continue;
     }
     const double x = n.dot(d.tip_state.segment<3>(kP));
-    const double Jn = n.dot(d.J.block<3, 1>(0, 0));                  // dx/dT
-    const double Cn = -n.dot(d.C.block<3, 3>(0, 0) * n);             // dx/df (W = -f n)
+    const double Jn = n.dot(d.J.block<3, 1>(0, 0));       // dx/dT
+    const double Cn = -n.dot(d.C.block<3, 3>(0, 0) * n);  // dx/df (W = -f n)
     const double df = F_req - f;
     // [Pawlowski2019] Eq. (43) dq = -J^-1 C dW, with the Eq. (40) correction J^-1 dx for the
     // drift of the contact coordinate from its held value.

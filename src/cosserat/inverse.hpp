@@ -35,8 +35,8 @@ enum class TipDerivativeMethod {
 
 /// Tip Jacobian J = dX/dq and compliance C = dX/dW (X = tip position and rotation).
 struct TipDerivatives {
-  Eigen::MatrixXd J;  ///< 6 x q: rows d p_W [m/K or m/N], d theta_W [rad/K or rad/N]
-  Eigen::MatrixXd C;  ///< 6 x 6: columns F_e,W (x, y, z) [per N], M_e,W [per N m]
+  Eigen::MatrixXd J;          ///< 6 x q: rows d p_W [m/K or m/N], d theta_W [rad/K or rad/N]
+  Eigen::MatrixXd C;          ///< 6 x 6: columns F_e,W (x, y, z) [per N], M_e,W [per N m]
   Eigen::MatrixXd du_dq;      ///< -B_u^-1 B_q: first-order change of the shooting unknowns
   Eigen::MatrixXd B_u;        ///< d r_scaled / d u at the solution (a Newton Jacobian to reuse)
   Eigen::VectorXd tip_state;  ///< y(L) at the solution (shooting.hpp layout)
@@ -47,10 +47,9 @@ struct TipDerivatives {
 /// the converged `solution` of `actuation`. `variables` are actuator indices (model order).
 /// The model must have no tip constraint (J and C describe a free tip). Returns false if an
 /// IVP failed or B_u is singular.
-bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
-                     const Actuation& actuation, const Solution& solution,
-                     const std::vector<int>& variables, TipDerivativeMethod method,
-                     TipDerivatives& out);
+bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const Actuation& actuation,
+                     const Solution& solution, const std::vector<int>& variables,
+                     TipDerivativeMethod method, TipDerivatives& out);
 
 /// Lower and upper bound of each actuation variable: a TCA from its material's reference
 /// (ambient) temperature to the smaller of its valid-range maximum and `max_temperature_K`
@@ -78,12 +77,12 @@ struct InverseOptions {
 /// Outcome of a target solve.
 struct InverseResult {
   enum class Status {
-    kConverged,       ///< targeted error <= InverseOptions::tolerance_m
-    kUnreachable,     ///< a bounded least-squares optimum with error > tolerance: the
-                      ///< projected gradient |J^T e| <= kStationarity |J| |e| (or no decrease
-                      ///< possible); distance_m is the residual distance
-    kMaxIterations,   ///< max_iterations accepted steps without either test
-    kForwardFailed,   ///< a forward solve (or J) failed at the starting point
+    kConverged,      ///< targeted error <= InverseOptions::tolerance_m
+    kUnreachable,    ///< a bounded least-squares optimum with error > tolerance: the
+                     ///< projected gradient |J^T e| <= kStationarity |J| |e| (or no decrease
+                     ///< possible); distance_m is the residual distance
+    kMaxIterations,  ///< max_iterations accepted steps without either test
+    kForwardFailed,  ///< a forward solve (or J) failed at the starting point
   };
   Status status = Status::kForwardFailed;
   std::string message;
@@ -92,10 +91,10 @@ struct InverseResult {
   std::vector<bool> at_bound;  ///< variable held at a bound at the end
   Eigen::Vector3d tip_position_W_m = Eigen::Vector3d::Zero();
   Eigen::Matrix3d tip_R_WB = Eigen::Matrix3d::Identity();
-  double distance_m = 0.0;          ///< targeted position error norm at the end
+  double distance_m = 0.0;  ///< targeted position error norm at the end
   double orientation_error_rad = 0.0;
-  int iterations = 0;               ///< accepted steps
-  int forward_solves = 0;           ///< BVP solves (accepted and rejected trials)
+  int iterations = 0;      ///< accepted steps
+  int forward_solves = 0;  ///< BVP solves (accepted and rejected trials)
   bool converged() const { return status == Status::kConverged; }
 };
 
@@ -112,22 +111,22 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
 /// Grasp problem: one finger of an n-finger gripper, tip held by the object along the
 /// model's tip_constraint normal (pointing from the finger toward the object).
 struct GraspOptions {
-  double mass_kg = 0.0;          ///< m, the grasped mass
-  double friction = 0.0;         ///< mu between finger and object
-  int fingers = 2;               ///< n
+  double mass_kg = 0.0;   ///< m, the grasped mass
+  double friction = 0.0;  ///< mu between finger and object
+  int fingers = 2;        ///< n
   double max_temperature_K = std::numeric_limits<double>::quiet_NaN();  ///< NaN: material max
   double temperature_tolerance_K = 1e-7;  ///< Eq. (43) iteration: stop when |dT| <= this
   int max_iterations = 50;
   TipDerivativeMethod method = TipDerivativeMethod::kSensitivity;
-  bool cross_check = true;       ///< also root-find T on the blocked-tip forward solve
+  bool cross_check = true;  ///< also root-find T on the blocked-tip forward solve
 };
 
 /// Outcome of a grasp solve.
 struct GraspResult {
-  bool converged = false;       ///< Eq. (43) iteration converged (and the cross-check, if run)
+  bool converged = false;  ///< Eq. (43) iteration converged (and the cross-check, if run)
   std::string message;
-  double required_force_N = 0.0;        ///< [Pawlowski2019] Eq. (44): m g / (mu n)
-  double temperature_K = 0.0;           ///< Eq. (43) iterated to convergence
+  double required_force_N = 0.0;  ///< [Pawlowski2019] Eq. (44): m g / (mu n)
+  double temperature_K = 0.0;     ///< Eq. (43) iterated to convergence
   int iterations = 0;
   std::optional<double> root_temperature_K;  ///< bracketed root of the blocked-tip solve
   int root_evaluations = 0;

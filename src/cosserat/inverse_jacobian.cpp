@@ -1,7 +1,5 @@
 // Tip Jacobian and compliance of the shooting solution ([Pawlowski2019] Eqs. (34)-(42)) and
 // the actuation bounds of the inverse solvers.
-#include "cosserat/inverse.hpp"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -14,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/finite_difference.hpp"
 #include "common/units.hpp"
+#include "cosserat/inverse.hpp"
 #include "cosserat/inverse_internal.hpp"
 
 namespace tcasim::cosserat {
@@ -28,17 +27,17 @@ using state_layout::kR;
 
 }  // namespace
 
-bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
-                     const Actuation& actuation, const Solution& solution,
-                     const std::vector<int>& variables, TipDerivativeMethod method,
-                     TipDerivatives& out) {
+bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const Actuation& actuation,
+                     const Solution& solution, const std::vector<int>& variables,
+                     TipDerivativeMethod method, TipDerivatives& out) {
   require(!model.tip_constraint, "model.tip_constraint", "(set)",
           "must be absent: J and C describe a free tip");
   const int nx = solver.unknown_count();
   const int nq = static_cast<int>(variables.size());
   const double Fc = solver.characteristic_force_N();
   const double L = model.length_m;
-  require(solution.unknowns.size() == nx, "solution.unknowns", static_cast<double>(solution.unknowns.size()),
+  require(solution.unknowns.size() == nx, "solution.unknowns",
+          static_cast<double>(solution.unknowns.size()),
           "must hold the solver's " + std::to_string(nx) + " unknowns");
   for (int i : variables) {
     require(i >= 0 && i < static_cast<int>(model.actuators.size()), "variables", i,
@@ -161,7 +160,10 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
       const double w0 = c < 3 ? actuation.tip_force_W_N[c] : actuation.tip_moment_W_Nm[c - 3];
       const double h = step * std::max(std::abs(w0), c < 3 ? Fc : Fc * L);
       auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
-        if (c < 3) a.tip_force_W_N[c] = w0 + hh; else a.tip_moment_W_Nm[c - 3] = w0 + hh;
+        if (c < 3)
+          a.tip_force_W_N[c] = w0 + hh;
+        else
+          a.tip_moment_W_Nm[c - 3] = w0 + hh;
         return solver.residual_and_tip_state(a, x, r, y);
       };
       if (!column(eval, h, BW.col(c), EW.col(c))) return false;
@@ -191,7 +193,7 @@ void actuation_bounds(const rod::RodModel& model, const std::vector<int>& variab
       const tca::Material& mat = model.actuators[i].drive.tca->material();
       lower[k] = mat.reference_temperature_K;
       upper[k] = std::isnan(max_temperature_K) ? mat.max_temperature_K
-                                                : std::min(mat.max_temperature_K, max_temperature_K);
+                                               : std::min(mat.max_temperature_K, max_temperature_K);
       require(upper[k] > lower[k], "max_temperature_degC", units::K_to_degC(upper[k]),
               "must be above the ambient (reference) temperature " +
                   format_value(units::K_to_degC(lower[k])) + " degC of actuator '" +

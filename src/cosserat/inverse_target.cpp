@@ -1,7 +1,5 @@
 // Target solve of the inverse problem: bounded, trust-region least squares on the actuation
 // ([Pawlowski2019] Section IV with the tip Jacobian of inverse_jacobian.cpp).
-#include "cosserat/inverse.hpp"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -14,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
+#include "cosserat/inverse.hpp"
 #include "cosserat/inverse_internal.hpp"
 
 namespace tcasim::cosserat {
@@ -57,7 +56,10 @@ Eigen::VectorXd bounded_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& e,
     std::vector<int> free_idx;
     Eigen::VectorXd ef = e;
     for (int i = 0; i < m; ++i) {
-      if (fixed[i]) ef -= A.col(i) * dq[i]; else free_idx.push_back(i);
+      if (fixed[i])
+        ef -= A.col(i) * dq[i];
+      else
+        free_idx.push_back(i);
     }
     if (free_idx.empty()) break;
     const int nf = static_cast<int>(free_idx.size());
@@ -74,8 +76,16 @@ Eigen::VectorXd bounded_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& e,
     for (int c = 0; c < nf; ++c) {
       const int i = free_idx[c];
       dq[i] = s[c];
-      if (q[i] + dq[i] > hi[i]) { dq[i] = hi[i] - q[i]; fixed[i] = true; violated = true; }
-      if (q[i] + dq[i] < lo[i]) { dq[i] = lo[i] - q[i]; fixed[i] = true; violated = true; }
+      if (q[i] + dq[i] > hi[i]) {
+        dq[i] = hi[i] - q[i];
+        fixed[i] = true;
+        violated = true;
+      }
+      if (q[i] + dq[i] < lo[i]) {
+        dq[i] = lo[i] - q[i];
+        fixed[i] = true;
+        violated = true;
+      }
     }
     if (!violated) break;
   }
@@ -91,7 +101,8 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
   require(options.tolerance_m > 0.0, "options.tolerance_m", options.tolerance_m, "must be > 0");
   require(options.max_iterations >= 1, "options.max_iterations", options.max_iterations,
           "must be >= 1");
-  const bool any_component = options.components[0] || options.components[1] || options.components[2];
+  const bool any_component =
+      options.components[0] || options.components[1] || options.components[2];
   require(any_component || options.target_R_WB.has_value(), "options.components", 0.0,
           "must select at least one tip position component (or give an orientation target)");
   InverseResult res;
@@ -128,7 +139,8 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
     Eigen::VectorXd e(ne);
     const Vec3 dp = target_W_m - y.segment<3>(kP);
     Vec3 dth = Vec3::Zero();
-    if (options.target_R_WB) dth = so3::log(Mat3(*options.target_R_WB * rotation_of(y).transpose()));
+    if (options.target_R_WB)
+      dth = so3::log(Mat3(*options.target_R_WB * rotation_of(y).transpose()));
     for (int k = 0; k < ne; ++k) e[k] = rows[k] < 3 ? dp[rows[k]] : L * dth[rows[k] - 3];
     return e;
   };
@@ -171,7 +183,8 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
     lo_step = lo;
     bool moved = false;
     for (int k = 0; k < nq; ++k) {
-      const std::optional<double> t_open = opening_temperature(model, actuation, vars[k], solution, hi[k]);
+      const std::optional<double> t_open =
+          opening_temperature(model, actuation, vars[k], solution, hi[k]);
       if (!t_open) continue;
       q[k] = std::max(q[k], *t_open);
       lo_step[k] = q[k];
@@ -182,9 +195,10 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
       ++res.forward_solves;
       s = solver.solve(actuation, solution);
       if (!s.converged()) {
-        return finish(InverseResult::Status::kForwardFailed,
-                      std::string("forward solve at the coil-opening temperature failed: ") + s.message,
-                      solution.tip_state);
+        return finish(
+            InverseResult::Status::kForwardFailed,
+            std::string("forward solve at the coil-opening temperature failed: ") + s.message,
+            solution.tip_state);
       }
     }
     if (!tip_derivatives(solver, model, actuation, solution, vars, options.method, d)) {

@@ -85,7 +85,8 @@ class LieGroupRk4 {
   /// Twist (nu, omega) of block b of Y as a 6-vector (rho = nu, phi = omega).
   Eigen::Matrix<double, 6, 1> twist(const Eigen::VectorXd& Y, int b) const;
   /// Ys = Yn moved by the group increment Theta (block 0) and dTheta (blocks 1..m).
-  void apply_increment(const Eigen::VectorXd& Yn, const Eigen::MatrixXd& theta, Eigen::VectorXd& Ys) const;
+  void apply_increment(const Eigen::VectorXd& Yn, const Eigen::MatrixXd& theta,
+                       Eigen::VectorXd& Ys) const;
 
   int dim_, m_, steps_, total_;
   KinematicLayout lay_;

@@ -12,10 +12,10 @@
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 namespace {
 
@@ -69,7 +69,11 @@ Summary::Status ShootingSolver::Impl::newton(const Actuation& act, double lambda
     }
     dx = J.partialPivLu().solve(-r);
     if (!dx.allFinite()) {
-      if (!fresh) { J.resize(0, 0); --it; continue; }
+      if (!fresh) {
+        J.resize(0, 0);
+        --it;
+        continue;
+      }
       why = "singular shooting Jacobian";
       return Summary::Status::kSingularJacobian;
     }
@@ -86,7 +90,11 @@ Summary::Status ShootingSolver::Impl::newton(const Actuation& act, double lambda
       }
     }
     if (!accepted) {
-      if (!fresh) { J.resize(0, 0); --it; continue; }  // retry with a fresh FD Jacobian
+      if (!fresh) {
+        J.resize(0, 0);
+        --it;
+        continue;
+      }  // retry with a fresh FD Jacobian
       why = "line search found no decrease of ||r||^2 along the Newton direction";
       return Summary::Status::kLineSearchFailed;
     }
@@ -116,7 +124,8 @@ bool ShootingSolver::Impl::newton_jacobian(const Actuation& act, double lambda,
                                            Eigen::MatrixXd& J, bool& approximate) {
   approximate = false;
   const bool fine = level == &fine_level;
-  if (!fine || !coarse_level || !coarse_level->has_sensitivities() || (coarse_jacobian_x.size() == x.size() && coarse_jacobian_x == x)) {
+  if (!fine || !coarse_level || !coarse_level->has_sensitivities() ||
+      (coarse_jacobian_x.size() == x.size() && coarse_jacobian_x == x)) {
     return residual_and_jacobian(act, lambda, x, r, J);
   }
   coarse_jacobian_x = x;
@@ -152,10 +161,16 @@ bool ShootingSolver::Impl::fd_jacobian(const Actuation& act, double lambda,
     const double xj = x[j];
     xp[j] = xj + h;
     h = xp[j] - xj;  // exactly representable step
-    if (!residual(act, lambda, xp, rp)) { xp[j] = xj; return false; }
+    if (!residual(act, lambda, xp, rp)) {
+      xp[j] = xj;
+      return false;
+    }
     if (central) {
       xp[j] = xj - h;
-      if (!residual(act, lambda, xp, rm)) { xp[j] = xj; return false; }
+      if (!residual(act, lambda, xp, rm)) {
+        xp[j] = xj;
+        return false;
+      }
       J.col(j) = (rp - rm) / (2.0 * h);
     } else {
       J.col(j) = (rp - r0) / h;
@@ -197,7 +212,7 @@ Summary::Status ShootingSolver::Impl::continuation(const Actuation& act, Eigen::
         // Report the residual at the full load for the returned point.
         Eigen::VectorXd r;
         summary.residual = residual(act, 1.0, xc, r) ? r.lpNorm<Eigen::Infinity>()
-                                                       : std::numeric_limits<double>::infinity();
+                                                     : std::numeric_limits<double>::infinity();
         why = "continuation stalled at load fraction " + format_value(lambda) + " (step < " +
               format_value(options.min_continuation_step) + "): " + why;
         x = xc;

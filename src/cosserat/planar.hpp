@@ -35,13 +35,13 @@ inline constexpr int kMaxDirections = 8;
 /// The planar rod: constants of the model and the parameters of the current IVP.
 struct Rod {
   double kn_x = 0.0, kn_z = 0.0, kw_y = 0.0;  ///< K_nu x, z and K_omega y [N], [N m^2]
-  std::vector<double> rho;           ///< per actuator: offset along body x [m]
-  std::vector<double> length_ratio;  ///< per actuator: rest length / L
-  std::vector<double> count;         ///< per actuator: parallel strings
-  std::vector<int> direction_of;     ///< per actuator: sensitivity direction of its tension, or -1
+  std::vector<double> rho;                    ///< per actuator: offset along body x [m]
+  std::vector<double> length_ratio;           ///< per actuator: rest length / L
+  std::vector<double> count;                  ///< per actuator: parallel strings
+  std::vector<int> direction_of;  ///< per actuator: sensitivity direction of its tension, or -1
   // Parameters of the current IVP.
-  std::vector<double> cT;            ///< per actuator: count x tension [N]
-  double f_x = 0.0, f_z = 0.0;       ///< R_WB0^T f_ext (distributed load per length) [N/m]
+  std::vector<double> cT;       ///< per actuator: count x tension [N]
+  double f_x = 0.0, f_z = 0.0;  ///< R_WB0^T f_ext (distributed load per length) [N/m]
 };
 
 /// d y / ds of the planar IVP (docs/conventions.md "Body-frame ODEs", restricted to the plane).
@@ -55,7 +55,8 @@ void rhs(const Rod& rod, const double* y, double* dy);
 void rhs_sens(const Rod& rod, int dim, int n_dir, const double* Y, double* dY);
 
 /// Tip wrench residual (unscaled): force (x, z) in the body frame and moment about body y,
-///   K_nu (nu - nu*) - R^T F_e + sum c_i T_i qh_i,  K_omega (omega - omega*) - R^T M_e + sum c_i T_i r_i x qh_i
+///   K_nu (nu - nu*) - R^T F_e + sum c_i T_i qh_i,  K_omega (omega - omega*) - R^T M_e + sum c_i
+///   T_i r_i x qh_i
 /// with F_e = R_WB0 (F_x, 0, F_z) and M_e = R_WB0 (0, M_y, 0); kappa_star = omega*_y.
 void tip_wrench(const Rod& rod, double kappa_star, double F_x, double F_z, double M_y,
                 const double* y, double out[3]);

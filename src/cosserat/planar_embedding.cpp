@@ -6,10 +6,10 @@
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 bool ShootingSolver::Impl::planar_model(const rod::RodModel& m, const Options& o) {
   if (!o.planar_reduction || !ode::is_fixed_step(o.integrator.method) ||

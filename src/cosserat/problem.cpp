@@ -37,7 +37,8 @@ RodProblem::RodProblem(const rod::RodModel& m, bool planar_layout)
 }
 
 int RodProblem::state_dimension(const rod::RodModel& m, bool planar_state) {
-  return (planar_state ? planar::kDelta : state_layout::kDelta) + static_cast<int>(m.actuators.size());
+  return (planar_state ? planar::kDelta : state_layout::kDelta) +
+         static_cast<int>(m.actuators.size());
 }
 
 }  // namespace tcasim::cosserat::internal

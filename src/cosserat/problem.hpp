@@ -27,7 +27,8 @@ struct RodProblem {
 
   const rod::RodModel& model;
   bool planar = false;
-  int x_tca = 6;  // index of the first TCA unknown: after nu(0), omega(0) (3-D) or their in-plane part
+  int x_tca =
+      6;  // index of the first TCA unknown: after nu(0), omega(0) (3-D) or their in-plane part
   int n_act = 0;
   int n_tca = 0;
   int nx = 0;
@@ -40,9 +41,9 @@ struct RodProblem {
   int dim = 0;
   double L = 0.0;
   Vec3 K_nu, K_omega, nu_star, omega_star;
-  Vec3 K_nu_inv, K_omega_inv;  // reciprocals for StringSystem
-  std::vector<int> unknown_of;   // actuator -> unknown index (-1 for tension drives)
-  std::vector<int> act_of;       // TCA unknown k (x[x_tca + k]) -> actuator
+  Vec3 K_nu_inv, K_omega_inv;   // reciprocals for StringSystem
+  std::vector<int> unknown_of;  // actuator -> unknown index (-1 for tension drives)
+  std::vector<int> act_of;      // TCA unknown k (x[x_tca + k]) -> actuator
   std::vector<double> length_ratio;
   std::vector<double> count;
   std::vector<bool> straight;

@@ -179,8 +179,8 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
       // d(A w) with w fixed: A = c T P / |q|
       const Vec3 w = zn - c.r.cross(zo);
       const Vec3 dPw = -(dqh * c.qh.dot(w) + c.qh * dqh.dot(w));
-      const Vec3 dAw = (dcT * c.Pw + cT[i] * dPw) / c.q_norm -
-                       c.Pw * (cT[i] * dqn / (c.q_norm * c.q_norm));
+      const Vec3 dAw =
+          (dcT * c.Pw + cT[i] * dPw) / c.q_norm - c.Pw * (cT[i] * dqn / (c.q_norm * c.q_norm));
       db_nu -= dg + dAw;
       db_om -= c.r.cross(dg + dAw);
     }
@@ -215,7 +215,7 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
 void RodRhs::initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
   y0.setZero();
   if (planar) {
-    y0[planar::kCS] = 1.0;  // Rot_y(0) = I
+    y0[planar::kCS] = 1.0;                     // Rot_y(0) = I
     y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z - 1, kappa) are contiguous
     return;
   }

@@ -38,7 +38,7 @@ struct RodRhs : RodProblem {
   std::vector<double> cT;  // count * tension per actuator
   Vec3 f_ext_W = Vec3::Zero();
   std::vector<std::vector<tca::Segment>> scaled_segments;  // TCA segments at the load fraction
-  planar::Rod prod;  // the planar reduction's rod and parameters (planar only)
+  planar::Rod prod;           // the planar reduction's rod and parameters (planar only)
   ode::RhsFunction rhs;       // y' = f(s, y)
   ode::RhsFunction rhs_sens;  // (y, Y_j)' (sensitivities only)
 

@@ -15,20 +15,27 @@
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 const char* to_string(Summary::Status s) {
   switch (s) {
-    case Summary::Status::kConverged: return "converged";
-    case Summary::Status::kMaxIterations: return "max_iterations";
-    case Summary::Status::kLineSearchFailed: return "line_search_failed";
-    case Summary::Status::kSingularJacobian: return "singular_jacobian";
-    case Summary::Status::kContinuationFailed: return "continuation_failed";
-    case Summary::Status::kInitialPointFailed: return "initial_point_failed";
-    case Summary::Status::kNotRun: return "not_run";
+    case Summary::Status::kConverged:
+      return "converged";
+    case Summary::Status::kMaxIterations:
+      return "max_iterations";
+    case Summary::Status::kLineSearchFailed:
+      return "line_search_failed";
+    case Summary::Status::kSingularJacobian:
+      return "singular_jacobian";
+    case Summary::Status::kContinuationFailed:
+      return "continuation_failed";
+    case Summary::Status::kInitialPointFailed:
+      return "initial_point_failed";
+    case Summary::Status::kNotRun:
+      return "not_run";
   }
   return "unknown";
 }
@@ -63,8 +70,8 @@ Options ShootingSolver::Impl::validated(const rod::RodModel& m, Options o) {
   require(o.coarse_steps >= 0 && o.coarse_steps % 2 == 0, "options.coarse_steps", o.coarse_steps,
           "must be even and >= 0");
   require(o.max_iterations >= 1, "options.max_iterations", o.max_iterations, "must be >= 1");
-  require(o.max_line_search_steps >= 1, "options.max_line_search_steps",
-          o.max_line_search_steps, "must be >= 1");
+  require(o.max_line_search_steps >= 1, "options.max_line_search_steps", o.max_line_search_steps,
+          "must be >= 1");
   require(o.min_continuation_step > 0.0 && o.min_continuation_step < 1.0,
           "options.min_continuation_step", o.min_continuation_step, "must be in (0, 1)");
   require(o.centerline_intervals >= 0 && o.centerline_intervals % 2 == 0,
@@ -85,7 +92,8 @@ Options ShootingSolver::Impl::validated(const rod::RodModel& m, Options o) {
 }
 
 Options ShootingSolver::Impl::with_jacobian_fallback(Options o, int n_unknowns) {
-  if (o.jacobian == JacobianMethod::kSensitivity && n_unknowns > internal::kMaxSensitivityUnknowns) {
+  if (o.jacobian == JacobianMethod::kSensitivity &&
+      n_unknowns > internal::kMaxSensitivityUnknowns) {
     o.jacobian = JacobianMethod::kForwardDifference;
   }
   return o;
@@ -209,7 +217,8 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     res.discretization = {{"steps", static_cast<double>(options.integrator.steps)}};
     // RK4 (the paper's scheme) is the default and has no key; other schemes name their order.
     if (options.integrator.method != ode::Method::kRk4) {
-      res.discretization.push_back({"order", static_cast<double>(ode::order_of(options.integrator.method))});
+      res.discretization.push_back(
+          {"order", static_cast<double>(ode::order_of(options.integrator.method))});
     }
   } else {
     res.discretization = {{"rtol", options.integrator.relative_tolerance}};
@@ -282,8 +291,8 @@ Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
   if (actuation.load_scale != 1.0) return solve(actuation.applied(impl_->model), solution);
   // The planar reduction needs a planar actuation and, for a warm start, in-plane unknowns
   // (a 3-D equilibrium that left the plane stays a 3-D problem).
-  const bool out_of_plane_start = solution.valid && solution.unknowns.size() == impl_->nx &&
-                                  !Impl::in_plane(solution.unknowns);
+  const bool out_of_plane_start =
+      solution.valid && solution.unknowns.size() == impl_->nx && !Impl::in_plane(solution.unknowns);
   if (planar_ && impl_->planar_loads(actuation) && !out_of_plane_start) {
     return impl_->solve_planar(*planar_, actuation, solution);
   }

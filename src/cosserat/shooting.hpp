@@ -27,9 +27,9 @@
 /// with the characteristic force F_c = max(min(E I_x, E I_y) / L^2, the model's own largest
 /// load: |F_e|, |M_e| / L, the weight rho A |g| L, c_i |T_i| of tension drives;
 /// rod::characteristic_force_N of the model's own loads), fixed when the solver is built.
-/// Summaries also report the residual both methods share (Summary::equilibrium_residual). The force residual is K_nu e to the relative precision of e, so the
-/// scale needs no stiffness floor; its round-off is eps times the largest load it sums.
-/// Convergence: ||r||_inf <= Options::tolerance.
+/// Summaries also report the residual both methods share (Summary::equilibrium_residual). The force
+/// residual is K_nu e to the relative precision of e, so the scale needs no stiffness floor; its
+/// round-off is eps times the largest load it sums. Convergence: ||r||_inf <= Options::tolerance.
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
 /// DomainError at a trial point is a failed trial (the line search backs off).
 /// Planar problems are solved in the plane with the in-plane states and unknowns
@@ -99,8 +99,8 @@ struct Options {
   Kinematics kinematics = Kinematics::kFlat;
   /// Converged when the scaled residual satisfies ||r||_inf <= tolerance.
   double tolerance = 1e-10;
-  int max_iterations = 50;          ///< Newton iterations per solve (per continuation step)
-  int max_line_search_steps = 12;   ///< backtracking halvings per Newton iteration (t >= 2^-11)
+  int max_iterations = 50;         ///< Newton iterations per solve (per continuation step)
+  int max_line_search_steps = 12;  ///< backtracking halvings per Newton iteration (t >= 2^-11)
   JacobianMethod jacobian = JacobianMethod::kSensitivity;
   /// Finite-difference Jacobians only: after the first one, update it with Broyden's rank-one
   /// formula on accepted steps; a stalled line search recomputes it by differences.
@@ -140,16 +140,16 @@ struct Options {
 /// Outcome of one solve.
 struct Summary {
   enum class Status {
-    kConverged,          ///< ||r_scaled||_inf <= Options::tolerance
-    kMaxIterations,      ///< max_iterations Newton steps done with ||r_scaled||_inf > tolerance
-    kLineSearchFailed,   ///< max_line_search_steps halvings of the Newton step with a
-                         ///< freshly computed Jacobian gave no Armijo decrease of
-                         ///< ||r_scaled||^2 (or that Jacobian's IVP failed)
-    kSingularJacobian,   ///< a freshly computed Jacobian's LU gave a non-finite step
-    kContinuationFailed, ///< the direct solve failed and the continuation step fell below
-                         ///< Options::min_continuation_step (or the unloaded solve failed)
-    kInitialPointFailed, ///< the IVP or a TCA law failed at the initial guess
-    kNotRun,             ///< a default-constructed summary: no solve filled it
+    kConverged,           ///< ||r_scaled||_inf <= Options::tolerance
+    kMaxIterations,       ///< max_iterations Newton steps done with ||r_scaled||_inf > tolerance
+    kLineSearchFailed,    ///< max_line_search_steps halvings of the Newton step with a
+                          ///< freshly computed Jacobian gave no Armijo decrease of
+                          ///< ||r_scaled||^2 (or that Jacobian's IVP failed)
+    kSingularJacobian,    ///< a freshly computed Jacobian's LU gave a non-finite step
+    kContinuationFailed,  ///< the direct solve failed and the continuation step fell below
+                          ///< Options::min_continuation_step (or the unloaded solve failed)
+    kInitialPointFailed,  ///< the IVP or a TCA law failed at the initial guess
+    kNotRun,              ///< a default-constructed summary: no solve filled it
   };
   Status status = Status::kNotRun;
   int iterations = 0;          ///< Newton iterations over all levels and continuation steps
@@ -166,7 +166,7 @@ struct Summary {
   std::optional<double> equilibrium_residual;
   double characteristic_force_N = 0.0;  ///< F_c of the solve's loads (rod::characteristic_force_N)
   double wall_time_s = 0.0;
-  std::string message;         ///< empty when converged
+  std::string message;  ///< empty when converged
   /// Global equilibrium: n(0) and m(0) (about p(0)) minus what the applied loads
   /// (gravity, tip wrench, string terminations) require [N], [N m], world frame.
   Eigen::Vector3d force_imbalance_W_N = Eigen::Vector3d::Zero();
@@ -181,14 +181,15 @@ const char* to_string(Summary::Status s);
 
 /// A solution (or a starting guess): unknowns and what warm starts reuse.
 struct Solution {
-  bool valid = false;          ///< false: solve starts from the initial guess (a cold solve)
-  Eigen::VectorXd unknowns;    ///< x = (nu(0) - nu*, omega(0), T_tca..., tip reaction)
+  bool valid = false;        ///< false: solve starts from the initial guess (a cold solve)
+  Eigen::VectorXd unknowns;  ///< x = (nu(0) - nu*, omega(0), T_tca..., tip reaction)
   /// d r_scaled / d x at (or near) `unknowns`; may be empty. After a planar solve
   /// (Summary::planar) it is the Jacobian of the in-plane unknowns (nu_x, nu_z - 1, omega_y,
   /// T_tca...), as are coarse_unknowns, coarse_jacobian and the path's unknowns; a solve
   /// ignores those fields when their size is not its own number of unknowns.
   Eigen::MatrixXd jacobian;
-  Eigen::VectorXd tip_state;   ///< y(L) of the last accepted IVP (3-D layout, also after a planar solve)
+  Eigen::VectorXd
+      tip_state;  ///< y(L) of the last accepted IVP (3-D layout, also after a planar solve)
   /// Solution and Jacobian of the coarse level (Options::coarse_steps), for warm starts.
   Eigen::VectorXd coarse_unknowns;
   Eigen::MatrixXd coarse_jacobian;

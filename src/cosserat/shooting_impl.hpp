@@ -63,8 +63,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// (then it is recomputed at the new point); a stale Jacobian gets kStaleLineSearchSteps
   /// halvings before it is recomputed. x and J are in/out (J.size() == 0: no Jacobian yet).
   Summary::Status newton(const Actuation& act, double lambda, Eigen::VectorXd& x,
-                         Eigen::MatrixXd& J, Summary& summary, std::string& why,
-                         double tolerance);
+                         Eigen::MatrixXd& J, Summary& summary, std::string& why, double tolerance);
   /// Sensitivity Jacobian for Newton at x (r: the residual at x, kept). On the fine level
   /// with a coarse level (Options::coarse_steps), the first request at a point uses the coarse
   /// level's sensitivities (coarse_steps / steps of the cost; within the coarse discretization
@@ -95,8 +94,9 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// error of x:
   ///   x(N) = x* + C N^-p  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-p - N_m^-p) / (N_m^-p - N_c^-p).
   /// On failure x, J keep the coarse solution.
-  void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc, const Eigen::MatrixXd& Jc,
-                          Eigen::VectorXd& x, Eigen::MatrixXd& J, Summary& summary);
+  void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,
+                          const Eigen::MatrixXd& Jc, Eigen::VectorXd& x, Eigen::MatrixXd& J,
+                          Summary& summary);
   /// Warm start: the actuation change (temperatures) alters the TCA rows of the Jacobian
   /// only through the contact residual's derivatives (the IVP does not depend on
   /// temperatures). Row k is (a e_k + b ddelta/dx) / F_c with a = dphi/dT_k, b = dphi/d delta,
@@ -125,7 +125,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// fixed point gravity is ignored; *used_gravity tells whether it was included. Tip loads
   /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria).
   Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
-                                 bool* used_gravity = nullptr);
+                                bool* used_gravity = nullptr);
   /// TCA tensions of the guess: T_k = F_tca(delta_k(T)) with delta_k of the closed-form
   /// strains plus `extra` (the mean load strains), by a small damped Newton iteration
   /// (dT/d delta from the closed form); sets x's TCA entries (0 if it fails) and their

@@ -1,23 +1,22 @@
 // The shooting map: r(x) and dr/dx by one IVP from the unknowns x on the active level, and
 // the memo of the last accepted IVP.
-#include "cosserat/shooting_impl.hpp"
-
 #include "cosserat/planar.hpp"
+#include "cosserat/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                                     Eigen::VectorXd& r) {
   if (!all_finite(x)) return false;
   set_parameters(act, lambda, x);
-  if (memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x &&
-      acc_cT == cT && acc_f_ext == f_ext_W) {
+  if (memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x && acc_cT == cT &&
+      acc_f_ext == f_ext_W) {
     y = y_acc;  // same IVP as the last accepted one: no integration
     return tip_residual(act, lambda, x, y, r);
   }

@@ -159,7 +159,7 @@ class StringSystem {
     const Mat3 A_rh = A * rh;
     M_.topLeftCorner<3, 3>() += A;
     M_.topRightCorner<3, 3>() -= A_rh;
-    M_.bottomLeftCorner<3, 3>() -= A_rh.transpose();  // hat(r) A = -(A hat(r))^T
+    M_.bottomLeftCorner<3, 3>() -= A_rh.transpose();        // hat(r) A = -(A hat(r))^T
     M_.bottomRightCorner<3, 3>() += rh.transpose() * A_rh;  // -hat(r) A hat(r)
   }
   Vec3 kn_, ko_, kn_inv_, ko_inv_;

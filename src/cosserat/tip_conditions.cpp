@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "common/error.hpp"
-#include "rod/loads.hpp"
 #include "cosserat/planar.hpp"
+#include "rod/loads.hpp"
 
 namespace tcasim::cosserat::internal {
 
@@ -42,9 +42,9 @@ bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eige
   const Vec3 nu = nu_star + e;
   const Vec3 omega = yL.segment<3>(kOmega);
   // The holder's reaction (an unknown, not scaled by lambda) adds to the applied tip force.
-  Vec3 rn = K_nu.cwiseProduct(e) -
-            R.transpose() * (lambda * act.tip_force_W_N + reaction_W(x));
-  Vec3 rm = K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
+  Vec3 rn = K_nu.cwiseProduct(e) - R.transpose() * (lambda * act.tip_force_W_N + reaction_W(x));
+  Vec3 rm =
+      K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
   for (int i = 0; i < n_act; ++i) {
     if (cT[i] == 0.0) continue;
     const Vec3 ri = model.actuators[i].routing.r(L);
@@ -67,8 +67,8 @@ bool TipConditions::tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL
     const int k = unknown_of[i];
     if (k < 0) continue;
     try {
-      const tca::ContactResidual c = tca::contact_residual(
-          *model.actuators[i].drive.tca, x[k], yL[delta0 + i], scaled_segments[i]);
+      const tca::ContactResidual c = tca::contact_residual(*model.actuators[i].drive.tca, x[k],
+                                                           yL[delta0 + i], scaled_segments[i]);
       r[k] = c.phi_N / Fc;
       dphi_dT[i] = c.dphi_dF;
       dphi_ddelta[i] = c.dphi_ddelta_N_m;
@@ -135,7 +135,8 @@ bool TipConditions::planar_jacobian(const Actuation& act, double lambda, const E
     const double* yj = Y.data() + dim * (j + 1);
     for (int i = 0; i < n_act; ++i) {
       const int k = unknown_of[i];
-      if (k >= 0) J(k, j) = ((k == j ? dphi_dT[i] : 0.0) + dphi_ddelta[i] * yj[planar::kDelta + i]) / Fc;
+      if (k >= 0)
+        J(k, j) = ((k == j ? dphi_dT[i] : 0.0) + dphi_ddelta[i] * yj[planar::kDelta + i]) / Fc;
     }
   }
   return J.allFinite();

@@ -24,7 +24,8 @@ struct TipConditions : RodRhs {
   /// TCA rows r_k = phi(T_k, delta_k(L)) / F_c (tca::contact_residual: the free-coil law
   /// T_k - F_tca(delta_k) with coil contact) with delta at yL[delta0 + i]; sets dphi_dT and
   /// dphi_ddelta. False when a TCA law fails or r is not finite.
-  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0, Eigen::VectorXd& r);
+  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0,
+                Eigen::VectorXd& r);
   /// dr/dx (nx x nx) at x from y(L) = y and the augmented state Y(L) = (y, dy/dx_0, ...)
   /// of the sensitivity IVP (chain rule: dr = (dr/dy) Y(L) + dr/dT), after tip_residual at
   /// the same point (its dphi_dT, dphi_ddelta). False when J is not finite.

@@ -10,10 +10,10 @@
 namespace tcasim::cosserat {
 
 using namespace state_layout;
+using internal::all_finite;
 using internal::Mat3;
 using internal::Vec3;
 using internal::Vec6;
-using internal::all_finite;
 
 namespace {
 
@@ -41,19 +41,18 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
   Eigen::VectorXd coarse_x;
   Eigen::MatrixXd coarse_J;
   if (coarse_level) {
-    const bool warm_coarse = warm && sol.coarse_unknowns.size() == nx &&
-                             sol.coarse_unknowns.allFinite();
+    const bool warm_coarse =
+        warm && sol.coarse_unknowns.size() == nx && sol.coarse_unknowns.allFinite();
     // A warm start with a Jacobian goes straight to the fine level: its first residual is
     // usually free (IVP memo), and the Broyden-updated Jacobian saves the coarse solve.
     const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
     if ((!warm || warm_coarse) && !warm_fine) {
       Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
-      Eigen::MatrixXd Jc = warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian
-                                                                     : Eigen::MatrixXd();
+      Eigen::MatrixXd Jc =
+          warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian : Eigen::MatrixXd();
       std::string coarse_why;
       level = &*coarse_level;
-      const Summary::Status sc =
-          newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
+      const Summary::Status sc = newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
       level = &fine_level;
       if (sc == Summary::Status::kConverged) {
         if (warm) {
@@ -174,7 +173,8 @@ void ShootingSolver::Impl::record_path(Solution& sol, bool warm, bool converged,
     return;
   }
   sol.path.push_back({std::move(a), sol.unknowns});
-  if (static_cast<int>(sol.path.size()) > ShootingSolver::kPathHistory) sol.path.erase(sol.path.begin());
+  if (static_cast<int>(sol.path.size()) > ShootingSolver::kPathHistory)
+    sol.path.erase(sol.path.begin());
 }
 
 }  // namespace tcasim::cosserat

@@ -38,10 +38,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 const char* fe_status_name(beam_fe::Summary::Status s) {
   switch (s) {
-    case beam_fe::Summary::Status::kConverged: return "converged";
-    case beam_fe::Summary::Status::kStepTooSmall: return "step too small";
-    case beam_fe::Summary::Status::kLoadStepLimit: return "load-step limit";
-    case beam_fe::Summary::Status::kNotRun: return "not run";
+    case beam_fe::Summary::Status::kConverged:
+      return "converged";
+    case beam_fe::Summary::Status::kStepTooSmall:
+      return "step too small";
+    case beam_fe::Summary::Status::kLoadStepLimit:
+      return "load-step limit";
+    case beam_fe::Summary::Status::kNotRun:
+      return "not run";
   }
   return "unknown";
 }
@@ -56,15 +60,17 @@ Run solve_shooting(const rod::RodModel& model, const cosserat::Options& options,
   Run run;
   run.time_s = seconds_since(t0);
   run.converged = summary.converged();
-  run.status = summary.converged() ? std::string(cosserat::to_string(summary.status))
-                                   : std::string(cosserat::to_string(summary.status)) + ": " + summary.message;
+  run.status = summary.converged()
+                   ? std::string(cosserat::to_string(summary.status))
+                   : std::string(cosserat::to_string(summary.status)) + ": " + summary.message;
   run.result = solver.make_result(actuation, solution, summary);
   run.converged = run.converged && run.result.converged;
   if (status != nullptr) *status = summary.status;
   return run;
 }
 
-Run solve_fe_impl(const rod::RodModel& model, const FeSettings& settings, beam_fe::Summary::Status* status) {
+Run solve_fe_impl(const rod::RodModel& model, const FeSettings& settings,
+                  beam_fe::Summary::Status* status) {
   beam_fe::Options options;
   options.elements = settings.elements;
   options.order = settings.order;
@@ -75,8 +81,9 @@ Run solve_fe_impl(const rod::RodModel& model, const FeSettings& settings, beam_f
   const beam_fe::Summary summary = beam_fe::solve(model, options, state);
   Run run;
   run.time_s = seconds_since(t0);
-  run.status = summary.converged() ? fe_status_name(summary.status)
-                                   : std::string(fe_status_name(summary.status)) + ": " + summary.message;
+  run.status = summary.converged()
+                   ? fe_status_name(summary.status)
+                   : std::string(fe_status_name(summary.status)) + ": " + summary.message;
   run.result = beam_fe::make_result(model, options, state, summary);
   run.converged = summary.converged() && run.result.converged;
   if (status != nullptr) *status = summary.status;
@@ -88,7 +95,8 @@ Run solve_fe_impl(const rod::RodModel& model, const FeSettings& settings, beam_f
 std::vector<std::string> scenario_files(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw InputError("scenario folder", dir, "is not a readable folder");
+  if (!fs::is_directory(dir, ec))
+    throw InputError("scenario folder", dir, "is not a readable folder");
   std::vector<std::string> paths;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
@@ -103,12 +111,14 @@ std::vector<std::string> scenario_files(const std::string& dir) {
   return paths;
 }
 
-std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only, std::size_t minimum) {
+std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only,
+                               std::size_t minimum) {
   return std::max(only.empty() ? scenario_files(dir).size() : only.size(), minimum);
 }
 
-std::vector<rod::RodModel> load_suite(const std::string& dir, const std::vector<std::string>& only,
-                                      std::vector<std::pair<std::string, std::string>>& /*skipped*/) {
+std::vector<rod::RodModel> load_suite(
+    const std::string& dir, const std::vector<std::string>& only,
+    std::vector<std::pair<std::string, std::string>>& /*skipped*/) {
   std::vector<rod::RodModel> models;
   for (const auto& path : scenario_files(dir)) {
     rod::RodModel model = rod::read_scenario(path);
@@ -125,7 +135,8 @@ Eigen::Vector3d centerline_point(const rod::Result& result, double s_m) {
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (std::abs(s[i] - s_m) <= kSampleMatch * scale) return result.centerline_p_W_m.at(i);
   }
-  throw std::invalid_argument(fmt::format("centerline_point: no sample at s = {} m in the {} result", s_m, result.method));
+  throw std::invalid_argument(
+      fmt::format("centerline_point: no sample at s = {} m in the {} result", s_m, result.method));
 }
 
 double measured_arc_length(const rod::RodModel& model) {
@@ -135,7 +146,8 @@ double measured_arc_length(const rod::RodModel& model) {
 
 ResultDifference difference(const rod::Result& a, const rod::Result& b) {
   if (a.actuators.size() != b.actuators.size()) {
-    throw std::invalid_argument(fmt::format("difference: {} vs {} actuators", a.actuators.size(), b.actuators.size()));
+    throw std::invalid_argument(
+        fmt::format("difference: {} vs {} actuators", a.actuators.size(), b.actuators.size()));
   }
   ResultDifference d;
   d.tip_m = (a.tip_position_W_m - b.tip_position_W_m).norm();
@@ -152,9 +164,10 @@ ResultDifference difference(const rod::Result& a, const rod::Result& b) {
   const Eigen::Matrix3d R_ab = a.tip_R_WB.transpose() * b.tip_R_WB;
   d.rotation_rad = so3::log(R_ab).norm();
   for (std::size_t i = 0; i < a.actuators.size(); ++i) {
-    d.max_tension_N = std::max(d.max_tension_N, std::abs(a.actuators[i].tension_N - b.actuators[i].tension_N));
-    d.max_elongation_m =
-        std::max(d.max_elongation_m, std::abs(a.actuators[i].elongation_m - b.actuators[i].elongation_m));
+    d.max_tension_N =
+        std::max(d.max_tension_N, std::abs(a.actuators[i].tension_N - b.actuators[i].tension_N));
+    d.max_elongation_m = std::max(
+        d.max_elongation_m, std::abs(a.actuators[i].elongation_m - b.actuators[i].elongation_m));
   }
   return d;
 }
@@ -191,18 +204,22 @@ Reference shooting_reference(const rod::RodModel& model, const ReferenceSettings
   ref.rk4 = solve_shooting_rk4(model, settings.steps, settings.tolerance);
   ref.rk4_half = solve_shooting_rk4(model, settings.steps / 2, settings.tolerance);
   ref.self_error_m =
-      (ref.rk4.result.tip_position_W_m - ref.rk4_half.result.tip_position_W_m).norm() / (kRk4HalvingFactor - 1.0);
+      (ref.rk4.result.tip_position_W_m - ref.rk4_half.result.tip_position_W_m).norm() /
+      (kRk4HalvingFactor - 1.0);
   if (settings.cvode_rtol > 0.0) {
     ref.cvode = solve_shooting_cvode(model, settings.cvode_rtol, kCvodeNewtonTolerance);
-    ref.cvode_difference_m = (ref.cvode->result.tip_position_W_m - ref.rk4.result.tip_position_W_m).norm();
+    ref.cvode_difference_m =
+        (ref.cvode->result.tip_position_W_m - ref.rk4.result.tip_position_W_m).norm();
   }
   return ref;
 }
 
 Richardson richardson(const std::vector<double>& h, const std::vector<Eigen::Vector3d>& u) {
-  if (h.size() != 3 || u.size() != 3) throw std::invalid_argument("richardson: needs exactly 3 levels");
+  if (h.size() != 3 || u.size() != 3)
+    throw std::invalid_argument("richardson: needs exactly 3 levels");
   if (!(h[0] > h[1] && h[1] > h[2] && h[2] > 0.0)) {
-    throw std::invalid_argument(fmt::format("richardson: h = {}, {}, {} must decrease and be positive", h[0], h[1], h[2]));
+    throw std::invalid_argument(
+        fmt::format("richardson: h = {}, {}, {} must decrease and be positive", h[0], h[1], h[2]));
   }
   const double r = h[0] / h[1];
   if (std::abs(h[1] / h[2] - r) > kRatioTolerance * r) {
@@ -213,26 +230,30 @@ Richardson richardson(const std::vector<double>& h, const std::vector<Eigen::Vec
   const double d12 = (u[1] - u[2]).norm();
   out.order = d01 > 0.0 && d12 > 0.0 ? std::log(d01 / d12) / std::log(r) : kNaN;
   // [Richardson1911]: u(h) = u* + C h^p  =>  u* = u2 + (u2 - u1) / (r^p - 1).
-  out.value = std::isfinite(out.order) ? Eigen::Vector3d(u[2] + (u[2] - u[1]) / (std::pow(r, out.order) - 1.0))
-                                       : Eigen::Vector3d(u[2]);
+  out.value = std::isfinite(out.order)
+                  ? Eigen::Vector3d(u[2] + (u[2] - u[1]) / (std::pow(r, out.order) - 1.0))
+                  : Eigen::Vector3d(u[2]);
   return out;
 }
 
 bool ConvergenceStudy::converged() const {
-  return std::all_of(levels.begin(), levels.end(), [](const ConvergenceLevel& l) { return l.fe.converged; });
+  return std::all_of(levels.begin(), levels.end(),
+                     [](const ConvergenceLevel& l) { return l.fe.converged; });
 }
 
 ConvergenceStudy convergence_study(const rod::RodModel& model, const Reference& reference,
                                    const FeSettings& tolerances, const std::vector<int>& elements,
                                    const std::function<void(const std::string&)>& progress) {
-  if (elements.size() < 3) throw std::invalid_argument("convergence_study: needs at least 3 levels");
+  if (elements.size() < 3)
+    throw std::invalid_argument("convergence_study: needs at least 3 levels");
   ConvergenceStudy study;
   study.order = tolerances.order;
   study.measured_s_m = measured_arc_length(model);
   const Eigen::Vector3d p_ref = centerline_point(reference.rk4.result, study.measured_s_m);
   std::vector<double> h, errors;
   for (int n : elements) {
-    if (progress) progress(fmt::format("{} order {}: {} elements", model.name, tolerances.order, n));
+    if (progress)
+      progress(fmt::format("{} order {}: {} elements", model.name, tolerances.order, n));
     FeSettings s = tolerances;
     s.elements = n;
     ConvergenceLevel level;
@@ -253,15 +274,18 @@ ConvergenceStudy convergence_study(const rod::RodModel& model, const Reference& 
     floors.push_back(level.floor_estimate_m);
   }
   study.asymptotic_levels = asymptotic_level_count(h, errors, order_bracket(study.order), floors);
-  for (std::size_t i = study.asymptotic_levels; i < study.levels.size(); ++i) study.levels[i].round_off = true;
+  for (std::size_t i = study.asymptotic_levels; i < study.levels.size(); ++i)
+    study.levels[i].round_off = true;
   study.asymptotic_order = study.asymptotic_levels >= 2 ? p[study.asymptotic_levels - 2] : kNaN;
   // Richardson from the three finest asymptotic levels (or the three finest).
   const std::size_t n = std::max<std::size_t>(3, study.asymptotic_levels);
   std::vector<Eigen::Vector3d> tips;
-  for (std::size_t i = n - 3; i < n; ++i) tips.push_back(centerline_point(study.levels[i].fe.result, study.measured_s_m));
+  for (std::size_t i = n - 3; i < n; ++i)
+    tips.push_back(centerline_point(study.levels[i].fe.result, study.measured_s_m));
   study.richardson = richardson({h[n - 3], h[n - 2], h[n - 1]}, tips);
   for (auto& level : study.levels) {
-    level.richardson_error_m = (centerline_point(level.fe.result, study.measured_s_m) - study.richardson.value).norm();
+    level.richardson_error_m =
+        (centerline_point(level.fe.result, study.measured_s_m) - study.richardson.value).norm();
   }
   return study;
 }
@@ -270,13 +294,14 @@ double fe_round_off_floor_m(const rod::RodModel& model, int order, int elements)
   const double L = model.length_m;
   const Eigen::Vector3d Kw = model.bending_torsion_stiffness();
   const double nodes = static_cast<double>(order * elements + 1);
-  return std::numeric_limits<double>::epsilon() * nodes * model.shear_extension_stiffness().maxCoeff() * L * L /
-         std::min(Kw.x(), Kw.y()) * L;
+  return std::numeric_limits<double>::epsilon() * nodes *
+         model.shear_extension_stiffness().maxCoeff() * L * L / std::min(Kw.x(), Kw.y()) * L;
 }
 
 int asymptotic_level_count(const std::vector<double>& h, const std::vector<double>& errors,
                            const OrderBracket& bracket, const std::vector<double>& floors_m) {
-  if (floors_m.size() != errors.size()) throw std::invalid_argument("asymptotic_level_count: one floor per level");
+  if (floors_m.size() != errors.size())
+    throw std::invalid_argument("asymptotic_level_count: one floor per level");
   const std::vector<double> p = observed_orders(h, errors);
   for (std::size_t i = 1; i < errors.size(); ++i) {
     const bool slowed = !(p[i - 1] >= bracket.lo());  // NaN (a zero error) counts as slowed
@@ -297,7 +322,8 @@ std::vector<CrossCheckRow> cross_check(const rod::RodModel& model, const Referen
                                        const std::function<void(const std::string&)>& progress) {
   std::vector<CrossCheckRow> rows;
   for (const FeSettings& mesh : meshes) {
-    if (progress) progress(fmt::format("{}: fe order {}, {} elements", model.name, mesh.order, mesh.elements));
+    if (progress)
+      progress(fmt::format("{}: fe order {}, {} elements", model.name, mesh.order, mesh.elements));
     const Run fe = solve_fe(model, mesh);
     CrossCheckRow row;
     row.scenario = model.name;
@@ -319,56 +345,69 @@ std::string crosscheck_csv_header() {
          "reference_self_error_m,cvode_diff_m,max_elongation_diff_m\n";
 }
 
-std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference, int reference_steps) {
-  return fmt::format("{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e}\n",
-                     row.scenario,
-                     row.elements, row.order, row.diff.tip_m, row.diff.tip_m / row.length_m, row.diff.rotation_rad,
-                     row.diff.max_tension_N, row.cosserat_time_s, row.fe_time_s, row.converged ? 1 : 0,
-                     row.diff.mid_m, row.diff.reaction_N, reference_steps, reference.self_error_m,
-                     reference.cvode ? fmt::format("{:.6e}", reference.cvode_difference_m) : std::string(),
-                     row.diff.max_elongation_m);
+std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference,
+                               int reference_steps) {
+  return fmt::format(
+      "{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e}\n",
+      row.scenario, row.elements, row.order, row.diff.tip_m, row.diff.tip_m / row.length_m,
+      row.diff.rotation_rad, row.diff.max_tension_N, row.cosserat_time_s, row.fe_time_s,
+      row.converged ? 1 : 0, row.diff.mid_m, row.diff.reaction_N, reference_steps,
+      reference.self_error_m,
+      reference.cvode ? fmt::format("{:.6e}", reference.cvode_difference_m) : std::string(),
+      row.diff.max_elongation_m);
 }
 
 std::string convergence_csv_header() {
-  return "scenario,order,elements,h_m,error_m,observed_order,richardson_error_m,richardson_order,fe_time_s,"
+  return "scenario,order,elements,h_m,error_m,observed_order,richardson_error_m,richardson_order,"
+         "fe_time_s,"
          "converged,measured_s_m,range,floor_estimate_m,asymptotic_order\n";
 }
 
 std::string convergence_csv_rows(const std::string& scenario, const ConvergenceStudy& study) {
-  auto number = [](double v) { return std::isfinite(v) ? fmt::format("{:.6e}", v) : std::string(); };
+  auto number = [](double v) {
+    return std::isfinite(v) ? fmt::format("{:.6e}", v) : std::string();
+  };
   std::string out;
   for (const auto& l : study.levels) {
-    out += fmt::format("{},{},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{}\n", scenario, study.order,
-                       l.elements, l.h_m, l.error_m, number(l.observed_order), l.richardson_error_m,
-                       number(study.richardson.order), l.fe.time_s, l.fe.converged ? 1 : 0, study.measured_s_m,
-                       l.round_off ? "round-off floor" : "asymptotic", l.floor_estimate_m,
-                       number(study.asymptotic_order));
+    out += fmt::format("{},{},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{},{:.6e},{}\n",
+                       scenario, study.order, l.elements, l.h_m, l.error_m,
+                       number(l.observed_order), l.richardson_error_m,
+                       number(study.richardson.order), l.fe.time_s, l.fe.converged ? 1 : 0,
+                       study.measured_s_m, l.round_off ? "round-off floor" : "asymptotic",
+                       l.floor_estimate_m, number(study.asymptotic_order));
   }
   return out;
 }
 
 std::string convergence_table(const ConvergenceStudy& study) {
-  std::string out = fmt::format("  {:>8} {:>12} {:>12} {:>8} {:>14} {:>12} {:>9}\n", "elements", "h [m]",
-                                "error [m]", "order", "err vs Rich [m]", "floor [m]", "time [s]");
+  std::string out =
+      fmt::format("  {:>8} {:>12} {:>12} {:>8} {:>14} {:>12} {:>9}\n", "elements", "h [m]",
+                  "error [m]", "order", "err vs Rich [m]", "floor [m]", "time [s]");
   for (const auto& l : study.levels) {
-    out += fmt::format("  {:>8} {:>12.4e} {:>12.4e} {:>8} {:>14.4e} {:>12.4e} {:>9.3f}{}{}\n", l.elements, l.h_m,
-                       l.error_m,
-                       std::isfinite(l.observed_order) ? fmt::format("{:.3f}", l.observed_order) : std::string("-"),
-                       l.richardson_error_m, l.floor_estimate_m, l.fe.time_s, l.round_off ? "  round-off floor" : "",
+    out += fmt::format("  {:>8} {:>12.4e} {:>12.4e} {:>8} {:>14.4e} {:>12.4e} {:>9.3f}{}{}\n",
+                       l.elements, l.h_m, l.error_m,
+                       std::isfinite(l.observed_order) ? fmt::format("{:.3f}", l.observed_order)
+                                                       : std::string("-"),
+                       l.richardson_error_m, l.floor_estimate_m, l.fe.time_s,
+                       l.round_off ? "  round-off floor" : "",
                        l.fe.converged ? "" : "  NOT CONVERGED");
   }
   const int n = static_cast<int>(study.levels.size());
   if (study.asymptotic_levels < n) {
     out += fmt::format(
-        "  Refinement stops helping after {} elements: the error reached the FE's round-off floor (estimate "
-        "eps nodes EA L^2/EI L, column floor); the asymptotic order is over the {} levels before it\n",
+        "  Refinement stops helping after {} elements: the error reached the FE's round-off floor "
+        "(estimate "
+        "eps nodes EA L^2/EI L, column floor); the asymptotic order is over the {} levels before "
+        "it\n",
         study.levels[std::max(study.asymptotic_levels - 1, 0)].elements, study.asymptotic_levels);
   }
   out += fmt::format("  Asymptotic order (two finest asymptotic levels): {}\n",
-                     std::isfinite(study.asymptotic_order) ? fmt::format("{:.3f}", study.asymptotic_order)
-                                                           : std::string("- (fewer than two levels)"));
+                     std::isfinite(study.asymptotic_order)
+                         ? fmt::format("{:.3f}", study.asymptotic_order)
+                         : std::string("- (fewer than two levels)"));
   out += fmt::format("  Richardson ({} levels): order {:.3f}\n",
-                     study.asymptotic_levels >= 3 ? "three finest asymptotic" : "three finest", study.richardson.order);
+                     study.asymptotic_levels >= 3 ? "three finest asymptotic" : "three finest",
+                     study.richardson.order);
   return out;
 }
 
@@ -390,7 +429,8 @@ FeSettings tight_tolerances() {
 }
 
 std::vector<FeSettings> crosscheck_meshes(bool quick) {
-  const std::vector<int> quadratic = quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128};
+  const std::vector<int> quadratic =
+      quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128};
   const std::vector<int> linear = quick ? std::vector<int>{64} : std::vector<int>{64, 256, 1024};
   std::vector<FeSettings> out;
   for (int n : quadratic) {
@@ -416,15 +456,18 @@ StudyLevels study_levels(const std::string& scenario, int order, bool quick) {
   require(order == 2, "order", order, "must be 1 or 2");
   const int count = quick ? 3 : 4;
   if (scenario == "steel-4-tendon") {
-    return {2, count,
-            "the shooting reference of this slender rod is accurate to ~3e-11 m only (Newton at a scaled "
-            "residual of 1e-12; its CVODE solve differs by ~1e-11 m): quadratic errors below ~2e-9 m "
-            "(32 elements and finer) measure the reference"};
+    return {
+        2, count,
+        "the shooting reference of this slender rod is accurate to ~3e-11 m only (Newton at a "
+        "scaled "
+        "residual of 1e-12; its CVODE solve differs by ~1e-11 m): quadratic errors below ~2e-9 m "
+        "(32 elements and finer) measure the reference"};
   }
   if (scenario == "gripper-finger") {
-    return {4, count,
-            "small deflection (error 2e-11 m at 4 elements): from 64 elements the error reaches the "
-            "round-off floor (~1e-15 m)"};
+    return {
+        4, count,
+        "small deflection (error 2e-11 m at 4 elements): from 64 elements the error reaches the "
+        "round-off floor (~1e-15 m)"};
   }
   return {8, count, ""};
 }

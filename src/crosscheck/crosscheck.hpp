@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "common/convergence.hpp"
-
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
@@ -33,7 +32,8 @@ constexpr std::size_t kShippedSuiteScenarios = 16;
 
 /// How many scenarios a suite program must run (Gates::expect_count): the names in `only`
 /// when it is not empty, else the `tcasim.scenario/1` files of `dir`, and at least `minimum`.
-std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only, std::size_t minimum);
+std::size_t expected_scenarios(const std::string& dir, const std::vector<std::string>& only,
+                               std::size_t minimum);
 
 /// The suite: the scenario files of `dir` (restricted to the names in `only` when it is not
 /// empty); both solvers solve every scenario, so `skipped` (name, reason; for the program to
@@ -53,11 +53,11 @@ double measured_arc_length(const rod::RodModel& model);
 
 /// Differences between two results of the same model.
 struct ResultDifference {
-  double tip_m = 0.0;          ///< |p_a(L) - p_b(L)| [m]
-  double mid_m = 0.0;          ///< |p_a(L/2) - p_b(L/2)| [m] (NaN without a sample at L/2)
-  double reaction_N = 0.0;     ///< |tip reaction a - b| [N] (0 without a tip constraint)
-  double rotation_rad = 0.0;   ///< |log(R_a(L)^T R_b(L))| [rad]
-  double max_tension_N = 0.0;  ///< max over actuators of |T_a - T_b| (one string) [N]
+  double tip_m = 0.0;             ///< |p_a(L) - p_b(L)| [m]
+  double mid_m = 0.0;             ///< |p_a(L/2) - p_b(L/2)| [m] (NaN without a sample at L/2)
+  double reaction_N = 0.0;        ///< |tip reaction a - b| [N] (0 without a tip constraint)
+  double rotation_rad = 0.0;      ///< |log(R_a(L)^T R_b(L))| [rad]
+  double max_tension_N = 0.0;     ///< max over actuators of |T_a - T_b| (one string) [N]
   double max_elongation_m = 0.0;  ///< max over actuators of |e_a - e_b| (one string) [m]
 };
 /// a - b as above; throws std::invalid_argument if the actuator counts differ.
@@ -99,13 +99,13 @@ struct ReferenceSettings {
 
 /// The shooting reference of one model.
 struct Reference {
-  Run rk4;                    ///< RK4 with `steps`: the reference
-  Run rk4_half;               ///< RK4 with steps / 2
+  Run rk4;       ///< RK4 with `steps`: the reference
+  Run rk4_half;  ///< RK4 with steps / 2
   /// |p(steps) - p(steps/2)| / 15: estimated tip error of the reference [m].
   double self_error_m = 0.0;
-  std::optional<Run> cvode;   ///< second opinion (when asked for)
+  std::optional<Run> cvode;         ///< second opinion (when asked for)
   double cvode_difference_m = 0.0;  ///< |p_cvode - p_rk4| [m]
-  bool converged() const;     ///< every solve converged
+  bool converged() const;           ///< every solve converged
 };
 /// Solves the reference (throws nothing for non-convergence: see converged()).
 Reference shooting_reference(const rod::RodModel& model, const ReferenceSettings& settings);
@@ -117,19 +117,19 @@ using tcasim::observed_orders;  // common/convergence.hpp
 /// values u0, u1, u2 (e.g. tip positions):
 ///   p = log(|u0 - u1| / |u1 - u2|) / log r,   u* = u2 + (u2 - u1) / (r^p - 1).
 struct Richardson {
-  double order = 0.0;          ///< p (NaN when a difference is zero or not finite)
-  Eigen::Vector3d value;       ///< u*
+  double order = 0.0;     ///< p (NaN when a difference is zero or not finite)
+  Eigen::Vector3d value;  ///< u*
 };
 Richardson richardson(const std::vector<double>& h, const std::vector<Eigen::Vector3d>& u);
 
 /// One level of a convergence study.
 struct ConvergenceLevel {
   int elements = 0;
-  double h_m = 0.0;                  ///< element length L / elements
-  Run fe;                            ///< the FE solve
-  double error_m = 0.0;              ///< |p_fe(s) - p_ref(s)| at s = measured_arc_length
-  double observed_order = 0.0;       ///< from this level and the previous one (NaN at the first)
-  double richardson_error_m = 0.0;   ///< |p_fe(L) - u*| against the Richardson extrapolation
+  double h_m = 0.0;                 ///< element length L / elements
+  Run fe;                           ///< the FE solve
+  double error_m = 0.0;             ///< |p_fe(s) - p_ref(s)| at s = measured_arc_length
+  double observed_order = 0.0;      ///< from this level and the previous one (NaN at the first)
+  double richardson_error_m = 0.0;  ///< |p_fe(L) - u*| against the Richardson extrapolation
   /// Round-off floor estimate of this mesh's position error (fe_round_off_floor_m).
   double floor_estimate_m = 0.0;
   /// Beyond the asymptotic range: refinement stopped helping at or before this level
@@ -150,7 +150,7 @@ struct ConvergenceStudy {
   /// From the three finest asymptotic levels (the three finest levels when fewer than three
   /// are asymptotic: then its order is not the discretization's either).
   Richardson richardson;
-  bool converged() const;                ///< every FE solve converged
+  bool converged() const;  ///< every FE solve converged
 };
 /// Solves the FE on each element count (increasing, a common refinement ratio), with the
 /// given Newton tolerances, and measures errors against `reference` and against the
@@ -192,22 +192,23 @@ int asymptotic_level_count(const std::vector<double>& h, const std::vector<doubl
 /// One row of a cross-check: an FE mesh against the shooting reference.
 struct CrossCheckRow {
   std::string scenario;
-  double length_m = 0.0;      ///< body length L
+  double length_m = 0.0;  ///< body length L
   int elements = 0;
   int order = 0;
-  ResultDifference diff;      ///< fe - reference
+  ResultDifference diff;         ///< fe - reference
   double cosserat_time_s = 0.0;  ///< reference solve (RK4, `reference steps`)
   double fe_time_s = 0.0;
-  bool converged = false;     ///< FE and reference converged
+  bool converged = false;  ///< FE and reference converged
 };
 /// Cross-checks each FE mesh of `meshes` (elements, order, tolerances) against the reference.
-std::vector<CrossCheckRow> cross_check(const rod::RodModel& model, const Reference& reference,
-                                       const std::vector<FeSettings>& meshes,
-                                       const std::function<void(const std::string&)>& progress = {});
+std::vector<CrossCheckRow> cross_check(
+    const rod::RodModel& model, const Reference& reference, const std::vector<FeSettings>& meshes,
+    const std::function<void(const std::string&)>& progress = {});
 
 /// CSV header and rows of crosscheck.csv (columns in the header, units in their names).
 std::string crosscheck_csv_header();
-std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference, int reference_steps);
+std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference,
+                               int reference_steps);
 /// CSV header and rows of convergence.csv.
 std::string convergence_csv_header();
 std::string convergence_csv_rows(const std::string& scenario, const ConvergenceStudy& study);

@@ -21,11 +21,13 @@ ConstantStrains closed_form_strains(const RodModel& model, const std::vector<dou
   // omega*), the force sum c T e_z balances K_nu (nu - nu*).
   ConstantStrains s;
   s.e = Eigen::Vector3d(0.0, 0.0, -sum_T / K_nu.z());
-  s.omega = model.reference_curvature_B_1_m + Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
+  s.omega = model.reference_curvature_B_1_m +
+            Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
   return s;
 }
 
-std::vector<double> closed_form_elongations_m(const RodModel& model, const std::vector<double>& cT) {
+std::vector<double> closed_form_elongations_m(const RodModel& model,
+                                              const std::vector<double>& cT) {
   const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   std::vector<double> delta(model.actuators.size(), 0.0);
@@ -33,7 +35,8 @@ std::vector<double> closed_form_elongations_m(const RodModel& model, const std::
     const Eigen::Vector3d ri = model.actuators[i].routing.r(0.0);
     for (std::size_t j = 0; j < model.actuators.size(); ++j) {
       const Eigen::Vector3d rj = model.actuators[j].routing.r(0.0);
-      const double C = 1.0 / K_nu.z() + ri.y() * rj.y() / K_omega.x() + ri.x() * rj.x() / K_omega.y();
+      const double C =
+          1.0 / K_nu.z() + ri.y() * rj.y() / K_omega.x() + ri.x() * rj.x() / K_omega.y();
       delta[i] -= model.length_m * C * cT[j];
     }
   }
@@ -43,13 +46,15 @@ std::vector<double> closed_form_elongations_m(const RodModel& model, const std::
 void ramp_segments(const tca::Material& material, const std::vector<tca::Segment>& targets,
                    double lambda, std::vector<tca::Segment>& out) {
   out = targets;
-  for (tca::Segment& seg : out) seg.temperature_K = ramp_temperature_K(material, seg.temperature_K, lambda);
+  for (tca::Segment& seg : out)
+    seg.temperature_K = ramp_temperature_K(material, seg.temperature_K, lambda);
 }
 
 bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_actuators,
                           const std::vector<std::vector<tca::Segment>>& segments,
-                          const Eigen::Matrix<double, 6, 1>& extra, const GuessTensionOptions& options,
-                          std::vector<double>& cT, Eigen::VectorXd& T) {
+                          const Eigen::Matrix<double, 6, 1>& extra,
+                          const GuessTensionOptions& options, std::vector<double>& cT,
+                          Eigen::VectorXd& T) {
   const int n = static_cast<int>(tca_actuators.size());
   if (n == 0) return true;
   const double L = model.length_m;
@@ -75,7 +80,8 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
       const Eigen::Vector3d r = act.routing.r(0.0);
       const Eigen::Vector3d q = nu + omega.cross(r) + act.routing.dr(0.0);
       const double delta = L * q.norm() - act.rest_length_m;
-      const tca::ContactResidual c = tca::contact_residual(*act.drive.tca, Tk[k], delta, segments[i]);
+      const tca::ContactResidual c =
+          tca::contact_residual(*act.drive.tca, Tk[k], delta, segments[i]);
       gk[k] = c.phi_N;
       if (Gk) {
         const Eigen::Vector3d qh = q.normalized();
@@ -83,8 +89,10 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
           const Actuator& al = model.actuators[tca_actuators[l]];
           const Eigen::Vector3d rl = al.routing.r(0.0);
           const Eigen::Vector3d dnu(0.0, 0.0, -al.count / K_nu.z());
-          const Eigen::Vector3d domega(-al.count * rl.y() / K_omega.x(), al.count * rl.x() / K_omega.y(), 0.0);
-          (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) + c.dphi_ddelta_N_m * L * qh.dot(dnu + domega.cross(r));
+          const Eigen::Vector3d domega(-al.count * rl.y() / K_omega.x(),
+                                       al.count * rl.x() / K_omega.y(), 0.0);
+          (*Gk)(k, l) =
+              (k == l ? c.dphi_dF : 0.0) + c.dphi_ddelta_N_m * L * qh.dot(dnu + domega.cross(r));
         }
       }
     }
@@ -93,8 +101,10 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
   bool ok = false;
   try {
     ok = eval(T, g, &G);
-    const double tolerance = std::max(options.tolerance_N, options.tolerance_rel * g.lpNorm<Eigen::Infinity>());
-    for (int it = 0; ok && it < options.max_iterations && g.lpNorm<Eigen::Infinity>() > tolerance; ++it) {
+    const double tolerance =
+        std::max(options.tolerance_N, options.tolerance_rel * g.lpNorm<Eigen::Infinity>());
+    for (int it = 0; ok && it < options.max_iterations && g.lpNorm<Eigen::Infinity>() > tolerance;
+         ++it) {
       dT = G.partialPivLu().solve(-g);
       if (!dT.allFinite()) break;
       double t = 1.0;

@@ -25,7 +25,8 @@ struct ConstantStrains {
 ConstantStrains closed_form_strains(const RodModel& model, const std::vector<double>& cT);
 
 /// The closed form's string elongations, linear in the tensions:
-///   delta_i = -L sum_j C_ij c_j T_j,  C_ij = 1/(E A) + r_i,y r_j,y / (E I_x) + r_i,x r_j,x / (E I_y)
+///   delta_i = -L sum_j C_ij c_j T_j,  C_ij = 1/(E A) + r_i,y r_j,y / (E I_x) + r_i,x r_j,x / (E
+///   I_y)
 /// [m], cT as in closed_form_strains.
 std::vector<double> closed_form_elongations_m(const RodModel& model, const std::vector<double>& cT);
 
@@ -65,7 +66,8 @@ struct GuessTensionOptions {
 /// was not reached).
 bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_actuators,
                           const std::vector<std::vector<tca::Segment>>& segments,
-                          const Eigen::Matrix<double, 6, 1>& extra, const GuessTensionOptions& options,
-                          std::vector<double>& cT, Eigen::VectorXd& T);
+                          const Eigen::Matrix<double, 6, 1>& extra,
+                          const GuessTensionOptions& options, std::vector<double>& cT,
+                          Eigen::VectorXd& T);
 
 }  // namespace tcasim::rod

@@ -81,8 +81,9 @@ class StrictSax : public nlohmann::json_sax<json> {
   bool open(bool array) {
     // The key path of the new container, before it is pushed.
     if (static_cast<int>(stack_.size()) + 1 > kMaxJsonDepth) {
-      throw InputError(key_here(), fmt::format("(nesting depth {})", stack_.size() + 1),
-                       fmt::format("nests arrays and objects deeper than {} levels", kMaxJsonDepth));
+      throw InputError(
+          key_here(), fmt::format("(nesting depth {})", stack_.size() + 1),
+          fmt::format("nests arrays and objects deeper than {} levels", kMaxJsonDepth));
     }
     advance();
     stack_.push_back(Frame{array, 0, {}, {}});
@@ -134,12 +135,14 @@ json parse_json_text(const std::string& text, const std::string& file, const std
 json read_json_file(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw InputError(what, json(path).dump(), fmt::format("cannot be opened: {}", std::strerror(errno)));
+    throw InputError(what, json(path).dump(),
+                     fmt::format("cannot be opened: {}", std::strerror(errno)));
   }
   std::ostringstream content;
   content << in.rdbuf();
   if (in.bad()) {
-    throw InputError(what, json(path).dump(), fmt::format("cannot be read: {}", std::strerror(errno)));
+    throw InputError(what, json(path).dump(),
+                     fmt::format("cannot be read: {}", std::strerror(errno)));
   }
   return parse_json_text(content.str(), path, what);
 }

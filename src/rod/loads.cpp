@@ -47,8 +47,9 @@ void Loads::set_tension_N(std::size_t index, double tension_N) {
 
 void Loads::validate(const RodModel& model) const {
   if (actuators.size() != model.actuators.size()) {
-    throw_input_error("loads.actuators", static_cast<double>(actuators.size()),
-                      "must have one entry per model actuator (" + std::to_string(model.actuators.size()) + ")");
+    throw_input_error(
+        "loads.actuators", static_cast<double>(actuators.size()),
+        "must have one entry per model actuator (" + std::to_string(model.actuators.size()) + ")");
   }
   if (!(load_scale >= 0.0 && load_scale <= 1.0)) {
     throw_input_error("loads.load_scale", load_scale, "must be in [0, 1]");
@@ -60,13 +61,15 @@ void Loads::validate(const RodModel& model) const {
   for (std::size_t i = 0; i < actuators.size(); ++i) {
     const std::string key = "loads.actuators[" + std::to_string(i) + "]";
     if (model.actuators[i].drive.type == Drive::Type::kTca) {
-      if (actuators[i].segments.empty()) throw_input_error(key + ".segments", 0.0, "must not be empty for a TCA drive");
+      if (actuators[i].segments.empty())
+        throw_input_error(key + ".segments", 0.0, "must not be empty for a TCA drive");
       for (const tca::Segment& seg : actuators[i].segments) {
-        require(std::isfinite(seg.temperature_K), key + ".segments temperature_K", seg.temperature_K,
-                "must be finite");
+        require(std::isfinite(seg.temperature_K), key + ".segments temperature_K",
+                seg.temperature_K, "must be finite");
       }
     } else {
-      require(std::isfinite(actuators[i].tension_N), key + ".tension_N", actuators[i].tension_N, "must be finite");
+      require(std::isfinite(actuators[i].tension_N), key + ".tension_N", actuators[i].tension_N,
+              "must be finite");
     }
   }
 }
@@ -84,7 +87,8 @@ Loads Loads::applied(const RodModel& model) const {
     const Drive& drive = model.actuators[i].drive;
     if (drive.type != Drive::Type::kTca || !drive.tca) continue;
     const double t_ref = drive.tca->material().reference_temperature_K;
-    for (tca::Segment& seg : a.actuators[i].segments) seg.temperature_K = t_ref + s * (seg.temperature_K - t_ref);
+    for (tca::Segment& seg : a.actuators[i].segments)
+      seg.temperature_K = t_ref + s * (seg.temperature_K - t_ref);
   }
   return a;
 }
@@ -96,10 +100,12 @@ double characteristic_force_N(const RodModel& model, const Loads& loads) {
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   const double EI = std::min(K_omega.x(), K_omega.y());
   double load = std::max(a.tip_force_W_N.norm(), a.tip_moment_W_Nm.norm() / L);
-  load = std::max(load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
+  load = std::max(
+      load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
   for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
     const Actuator& act = model.actuators[i];
-    if (act.drive.type == Drive::Type::kTension) load = std::max(load, act.count * std::abs(a.actuators[i].tension_N));
+    if (act.drive.type == Drive::Type::kTension)
+      load = std::max(load, act.count * std::abs(a.actuators[i].tension_N));
   }
   return std::max(EI / (L * L), load);
 }

@@ -15,7 +15,7 @@ namespace tcasim::rod {
 
 /// The load of one actuator: which field is read depends on the model's drive type.
 struct ActuatorLoad {
-  double tension_N = 0.0;              ///< tension drive: tension of one string (positive = tensile)
+  double tension_N = 0.0;  ///< tension drive: tension of one string (positive = tensile)
   std::vector<tca::Segment> segments;  ///< TCA drive: segment fractions and temperatures [K]
 };
 

@@ -48,9 +48,9 @@ struct Routing {
   enum class Type { kStraight, kHelix };
   Type type = Type::kStraight;
   Eigen::Vector2d offset_m = Eigen::Vector2d::Zero();  ///< straight: constant offset
-  double radius_m = 0.0;      ///< helix radius
-  double phase_rad = 0.0;     ///< helix phase at s = 0
-  double turns_per_m = 0.0;   ///< helix turns per metre of arc length s
+  double radius_m = 0.0;                               ///< helix radius
+  double phase_rad = 0.0;                              ///< helix phase at s = 0
+  double turns_per_m = 0.0;                            ///< helix turns per metre of arc length s
 
   /// r_B(s), r_B'(s), r_B''(s) (derivatives with respect to the reference arc length s).
   Eigen::Vector3d r(double s_m) const;
@@ -62,11 +62,11 @@ struct Routing {
 struct Drive {
   enum class Type { kTension, kTca };
   Type type = Type::kTension;
-  double tension_N = 0.0;                ///< kTension: prescribed tension (positive = tensile)
-  std::string tca_id;                    ///< kTca: key into RodModel::tcas
-  std::shared_ptr<const tca::Tca> tca;   ///< kTca: the resolved TCA
-  std::vector<tca::Segment> segments;    ///< kTca: one segment {1, T} for a uniform temperature
-  bool segmented = false;                ///< true if the file gave `segments`
+  double tension_N = 0.0;               ///< kTension: prescribed tension (positive = tensile)
+  std::string tca_id;                   ///< kTca: key into RodModel::tcas
+  std::shared_ptr<const tca::Tca> tca;  ///< kTca: the resolved TCA
+  std::vector<tca::Segment> segments;   ///< kTca: one segment {1, T} for a uniform temperature
+  bool segmented = false;               ///< true if the file gave `segments`
 };
 
 /// One actuator: `count` identical parallel strings along one routing.

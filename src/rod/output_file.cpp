@@ -40,7 +40,8 @@ bool write_all(int fd, const std::string& text) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& text, const std::string& what) {
+void write_file_atomically(const std::string& path, const std::string& text,
+                           const std::string& what) {
   namespace fs = std::filesystem;
   static std::atomic<unsigned> counter{0};
   const fs::path target(path);
@@ -48,13 +49,15 @@ void write_file_atomically(const std::string& path, const std::string& text, con
   std::string tmp;
   int fd = -1;
   for (int attempt = 0; attempt < kTemporaryNameAttempts && fd < 0; ++attempt) {
-    tmp = (dir / fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter++)).string();
+    tmp = (dir / fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter++))
+              .string();
     // 0666 and the umask: the permissions a plain std::ofstream would give the file.
     fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0 && errno != EEXIST) break;
   }
   if (fd < 0) {
-    throw InputError(what, quoted(path), fmt::format("cannot be opened for writing: {}", std::strerror(errno)));
+    throw InputError(what, quoted(path),
+                     fmt::format("cannot be opened for writing: {}", std::strerror(errno)));
   }
   const bool written = write_all(fd, text);
   int saved = errno;
@@ -62,12 +65,14 @@ void write_file_atomically(const std::string& path, const std::string& text, con
   if (written && !closed) saved = errno;
   if (!written || !closed) {
     ::unlink(tmp.c_str());
-    throw InputError(what, quoted(path), fmt::format("could not be written: {}", std::strerror(saved)));
+    throw InputError(what, quoted(path),
+                     fmt::format("could not be written: {}", std::strerror(saved)));
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     saved = errno;
     ::unlink(tmp.c_str());
-    throw InputError(what, quoted(path), fmt::format("could not be written: {}", std::strerror(saved)));
+    throw InputError(what, quoted(path),
+                     fmt::format("could not be written: {}", std::strerror(saved)));
   }
 }
 

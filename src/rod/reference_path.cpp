@@ -71,7 +71,8 @@ double integrate(const std::function<double(double)>& f, double a, double b) {
   double previous = composite_gauss(f, a, b, kInitialPanels);
   for (int panels = 2 * kInitialPanels; panels <= kMaxPanels; panels *= 2) {
     const double current = composite_gauss(f, a, b, panels);
-    if (std::abs(current - previous) <= kQuadratureRelativeTolerance * std::abs(current)) return current;
+    if (std::abs(current - previous) <= kQuadratureRelativeTolerance * std::abs(current))
+      return current;
     previous = current;
   }
   return previous;
@@ -79,7 +80,8 @@ double integrate(const std::function<double(double)>& f, double a, double b) {
 
 }  // namespace
 
-ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m, double length_m) {
+ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
+                             double length_m) {
   ReferencePath out;
   const Eigen::Vector3d& w = omega_B_1_m;
   if (routing.type == Routing::Type::kStraight) {
@@ -105,8 +107,9 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
   const double lo = std::min(t0, t1), hi = std::max(t0, t1);
   // Minimum of sin(t - theta) on [lo, hi]: -1 where t - theta = -pi/2 + 2 pi n lies inside,
   // else at an end.
-  const double first_min = theta - 0.5 * units::kPi +
-                           2.0 * units::kPi * std::ceil((lo - theta + 0.5 * units::kPi) / (2.0 * units::kPi));
+  const double first_min =
+      theta - 0.5 * units::kPi +
+      2.0 * units::kPi * std::ceil((lo - theta + 0.5 * units::kPi) / (2.0 * units::kPi));
   const double t_min = first_min <= hi ? first_min : (axial(lo) <= axial(hi) ? lo : hi);
   out.min_axial = axial(t_min);
   out.min_axial_s_m = k != 0.0 ? (t_min - t0) / (2.0 * units::kPi * k) : 0.0;

@@ -16,9 +16,9 @@ namespace tcasim::rod {
 
 /// Length and regularity of one string's reference path.
 struct ReferencePath {
-  double length_m = 0.0;      ///< int_0^L |q*(s)| ds
-  double min_axial = 1.0;     ///< min over s in [0, L] of e3 . q*(s) (dimensionless)
-  double min_axial_s_m = 0.0; ///< an s where the minimum is attained [m]
+  double length_m = 0.0;       ///< int_0^L |q*(s)| ds
+  double min_axial = 1.0;      ///< min over s in [0, L] of e3 . q*(s) (dimensionless)
+  double min_axial_s_m = 0.0;  ///< an s where the minimum is attained [m]
 };
 
 /// The reference path of `routing` on a body of length `length_m` [m] with constant
@@ -26,6 +26,7 @@ struct ReferencePath {
 /// form L |q*|. Helix: |q*| depends on s only through the phase t = phi + 2 pi k s, so the
 /// integral is (whole periods) x (one period) + (the remainder), each by composite
 /// Gauss-Legendre quadrature refined until it changes by round-off only.
-ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m, double length_m);
+ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
+                             double length_m);
 
 }  // namespace tcasim::rod

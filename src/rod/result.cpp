@@ -10,9 +10,9 @@
 #include <iostream>
 
 #include "common/error.hpp"
-#include "rod/output_file.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
+#include "rod/output_file.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -75,8 +75,7 @@ void pose_at(double s_m, double length_m, const std::vector<double>& s,
   const std::size_t a = b - 1;
   const double t = (s_m - s[a]) / (s[b] - s[a]);
   const Eigen::Vector3d phi = so3::log(Eigen::Matrix3d(R[a].transpose() * R[b]));
-  const Eigen::Vector3d rho =
-      so3::left_jacobian_inverse(phi) * (R[a].transpose() * (p[b] - p[a]));
+  const Eigen::Vector3d rho = so3::left_jacobian_inverse(phi) * (R[a].transpose() * (p[b] - p[a]));
   R_out = R[a] * so3::exp(t * phi);
   p_out = p[a] + R[a] * (so3::left_jacobian(t * phi) * (t * rho));
 }
@@ -133,19 +132,21 @@ nlohmann::json to_json(const Result& result) {
       for (std::size_t k = 0; k < a.segments.size(); ++k) {
         const auto& [seg, contact] = a.segments[k];
         const std::string sf = fmt::format("{}.segments[{}]", field, k);
-        segs.push_back({{"fraction", w.number(seg.fraction, sf + ".fraction")},
-                        {"temperature_degC", w.number(units::K_to_degC(seg.temperature_K),
-                                                      sf + ".temperature_degC")},
-                        {"coils_closed", contact.coils_closed},
-                        {"contact_force_N", w.number(contact.contact_force_N, sf + ".contact_force_N")}});
+        segs.push_back(
+            {{"fraction", w.number(seg.fraction, sf + ".fraction")},
+             {"temperature_degC",
+              w.number(units::K_to_degC(seg.temperature_K), sf + ".temperature_degC")},
+             {"coils_closed", contact.coils_closed},
+             {"contact_force_N", w.number(contact.contact_force_N, sf + ".contact_force_N")}});
       }
       entry["segments"] = segs;
     }
     actuators.push_back(std::move(entry));
   }
   j["actuators"] = actuators;
-  j["bending_radius_m"] =
-      result.bending_radius_m ? w.number(*result.bending_radius_m, "bending_radius_m") : json(nullptr);
+  j["bending_radius_m"] = result.bending_radius_m
+                              ? w.number(*result.bending_radius_m, "bending_radius_m")
+                              : json(nullptr);
   if (result.tip_reaction_force_W_N) {
     j["tip_reaction_force_N"] = w.vector(*result.tip_reaction_force_W_N, "tip_reaction_force_N");
   }
@@ -154,7 +155,8 @@ nlohmann::json to_json(const Result& result) {
   json p_m = json::array();
   for (std::size_t k = 0; k < result.centerline_s_m.size(); ++k) {
     s_m.push_back(w.number(result.centerline_s_m[k], fmt::format("centerline.s_m[{}]", k)));
-    p_m.push_back(w.vector(result.centerline_p_W_m[k], fmt::format("centerline.position_m[{}]", k)));
+    p_m.push_back(
+        w.vector(result.centerline_p_W_m[k], fmt::format("centerline.position_m[{}]", k)));
   }
   j["centerline"] = {{"s_m", s_m}, {"position_m", p_m}};
 
@@ -163,21 +165,21 @@ nlohmann::json to_json(const Result& result) {
   if (!w.bad().empty()) {
     converged = false;
     const auto& bad = w.bad();
-    std::vector<std::string> listed(bad.begin(),
-                                    bad.begin() + static_cast<std::ptrdiff_t>(
-                                                      std::min(bad.size(), kMaxListedFields)));
-    std::string note = fmt::format("non-finite value written as null in {}{}", fmt::join(listed, ", "),
-                                   bad.size() > listed.size()
-                                       ? fmt::format(" and {} more", bad.size() - listed.size())
-                                       : std::string());
+    std::vector<std::string> listed(bad.begin(), bad.begin() + static_cast<std::ptrdiff_t>(std::min(
+                                                                   bad.size(), kMaxListedFields)));
+    std::string note = fmt::format(
+        "non-finite value written as null in {}{}", fmt::join(listed, ", "),
+        bad.size() > listed.size() ? fmt::format(" and {} more", bad.size() - listed.size())
+                                   : std::string());
     message = message.empty() ? note : message + "; " + note;
   }
   j["converged"] = converged;
   // A converged solve whose result holds a non-finite number is not reported as converged.
-  j["status"] = converged || result.status != "converged" ? result.status : std::string("non_finite_result");
+  j["status"] =
+      converged || result.status != "converged" ? result.status : std::string("non_finite_result");
   if (!converged) {
-    j["message"] = message.empty() ? std::string("the solver did not converge (no reason given)")
-                                   : message;
+    j["message"] =
+        message.empty() ? std::string("the solver did not converge (no reason given)") : message;
   }
   return j;
 }
@@ -259,12 +261,14 @@ void write_result(const Result& result, const std::string& path) {
   write_file_atomically(path, text, "result file");
 }
 
-std::optional<double> three_point_inner_radius(const RodModel& model, const std::vector<double>& s_m,
+std::optional<double> three_point_inner_radius(const RodModel& model,
+                                               const std::vector<double>& s_m,
                                                const std::vector<Eigen::Vector3d>& p_W_m,
                                                const std::vector<Eigen::Matrix3d>& R_WB) {
   assert(s_m.size() == p_W_m.size() && s_m.size() == R_WB.size());
   assert(s_m.size() >= 2);
-  if (s_m.size() < 2 || p_W_m.size() != s_m.size() || R_WB.size() != s_m.size()) return std::nullopt;
+  if (s_m.size() < 2 || p_W_m.size() != s_m.size() || R_WB.size() != s_m.size())
+    return std::nullopt;
   // A custom section has no outline, hence no inner edge (documented in the header).
   if (model.section.shape == Section::Shape::kCustom) return std::nullopt;
 

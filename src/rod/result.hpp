@@ -92,7 +92,8 @@ void write_result(const Result& result, const std::string& path);
 /// its two neighbours, exact for arcs and helices. Returns none when the lateral tip
 /// offset is below 1e-12 L or the points are collinear (a straight rod), and for a custom
 /// section (no outline, so no inner edge).
-std::optional<double> three_point_inner_radius(const RodModel& model, const std::vector<double>& s_m,
+std::optional<double> three_point_inner_radius(const RodModel& model,
+                                               const std::vector<double>& s_m,
                                                const std::vector<Eigen::Vector3d>& p_W_m,
                                                const std::vector<Eigen::Matrix3d>& R_WB);
 

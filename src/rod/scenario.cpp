@@ -36,7 +36,8 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
   if (m.name.empty()) m.name = "inline";
   m.source = o.nonempty_string("source");
   const double t_ref_degC = o.number("reference_temperature_degC");
-  m.reference_temperature_K = above_absolute_zero_K(t_ref_degC, o.key("reference_temperature_degC"));
+  m.reference_temperature_K =
+      above_absolute_zero_K(t_ref_degC, o.key("reference_temperature_degC"));
   m.youngs_modulus_Pa = parse_property(o, "youngs_modulus_Pa");
   m.shear_modulus_Pa = parse_property(o, "shear_modulus_Pa");
 
@@ -65,7 +66,8 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
     const double p_ref = m.diameter.ratio_polynomial.value(m.reference_temperature_K);
     require(p_ref > 0.0, d.key("ratio_polynomial_degC"), show(c),
             fmt::format("must be positive at reference_temperature_degC (it is {} there and "
-                        "divides the ratio)", p_ref));
+                        "divides the ratio)",
+                        p_ref));
   }
   if (o.has("f12_form")) m.f12_form = parse_f12_form(o);
 
@@ -81,8 +83,8 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
             o.key("reference_temperature_degC"), t_ref_degC,
             fmt::format("must lie inside valid_range_degC [{}, {}]", r[0], r[1]));
     for (int i = 0; i < kMaterialRangeSamples; ++i) {
-      const double t = m.min_temperature_K +
-                       (m.max_temperature_K - m.min_temperature_K) * i / (kMaterialRangeSamples - 1);
+      const double t = m.min_temperature_K + (m.max_temperature_K - m.min_temperature_K) * i /
+                                                 (kMaterialRangeSamples - 1);
       check_material_positive_at(m, t, key);
     }
   }
@@ -91,11 +93,10 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
 }
 
 tca::Material load_material(const std::string& name, const std::string& key) {
-  const bool safe = !name.empty() && name.front() != '.' &&
-                    std::all_of(name.begin(), name.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' ||
-                             c == '-';
-                    });
+  const bool safe =
+      !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+      });
   require(safe, key, quote(name),
           "must be a shipped material name (letters, digits, '.', '_', '-'), not a path");
   namespace fs = std::filesystem;
@@ -108,11 +109,11 @@ tca::Material load_material(const std::string& name, const std::string& key) {
       if (entry.path().extension() == ".json") available.push_back(entry.path().stem().string());
     }
     std::sort(available.begin(), available.end());
-    throw InputError(key, quote(name),
-                     fmt::format("names no shipped material: {} does not exist (available: {})",
-                                 file.string(),
-                                 available.empty() ? std::string("none")
-                                                   : fmt::format("{}", fmt::join(available, ", "))));
+    throw InputError(
+        key, quote(name),
+        fmt::format("names no shipped material: {} does not exist (available: {})", file.string(),
+                    available.empty() ? std::string("none")
+                                      : fmt::format("{}", fmt::join(available, ", "))));
   }
   const json doc = read_json_file(file.string(), key);
   tca::Material m = parse_material(doc, file.string() + ":");
@@ -175,8 +176,9 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   if (o.has("actuators")) {
     const json& acts = o.required("actuators");
     if (!acts.is_array()) {
-      throw InputError("actuators", show(acts),
-                       fmt::format("must be an array of actuator objects, not {}", type_name(acts)));
+      throw InputError(
+          "actuators", show(acts),
+          fmt::format("must be an array of actuator objects, not {}", type_name(acts)));
     }
     if (acts.size() > kMaxActuators) {
       throw InputError("actuators", fmt::format("(an array of {} actuators)", acts.size()),

@@ -52,7 +52,8 @@ Routing parse_routing(const json& j, const std::string& path, const Section& sec
     r.turns_per_m = o.number("turns_per_m");
     if (section.shape != Section::Shape::kCustom) {
       // The helix sweeps every direction: it must fit where the section is narrowest.
-      const double narrowest = std::min(section.half_extent_m(1.0, 0.0), section.half_extent_m(0.0, 1.0));
+      const double narrowest =
+          std::min(section.half_extent_m(1.0, 0.0), section.half_extent_m(0.0, 1.0));
       require(r.radius_m <= narrowest * (1.0 + kEdgeRelativeTolerance), o.key("radius_m"),
               r.radius_m,
               fmt::format("puts the helix outside the body section (narrowest half extent {} m)",
@@ -97,9 +98,10 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   if (it == model.tcas.end()) {
     std::vector<std::string> ids;
     for (const auto& kv : model.tcas) ids.push_back(kv.first);
-    throw InputError(o.key("tca"), quote(d.tca_id),
-                     fmt::format("is not a key of tcas (defined: {})",
-                                 ids.empty() ? std::string("none") : fmt::format("{}", fmt::join(ids, ", "))));
+    throw InputError(
+        o.key("tca"), quote(d.tca_id),
+        fmt::format("is not a key of tcas (defined: {})",
+                    ids.empty() ? std::string("none") : fmt::format("{}", fmt::join(ids, ", "))));
   }
   d.tca = it->second;
   const bool has_t = o.has("temperature_degC");
@@ -128,11 +130,13 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   }
   double sum = 0.0;
   for (std::size_t i = 0; i < segs.size(); ++i) {
-    const Obj so(segs[i], fmt::format("{}[{}]", o.key("segments"), i), {"fraction", "temperature_degC"});
+    const Obj so(segs[i], fmt::format("{}[{}]", o.key("segments"), i),
+                 {"fraction", "temperature_degC"});
     const double f = so.number("fraction");
     require(f > 0.0 && f <= 1.0, so.key("fraction"), f, "must lie in (0, 1]");
     sum += f;
-    d.segments.push_back(tca::Segment{f, parse_drive_temperature_K(so, "temperature_degC", *d.tca)});
+    d.segments.push_back(
+        tca::Segment{f, parse_drive_temperature_K(so, "temperature_degC", *d.tca)});
   }
   require(std::abs(sum - 1.0) <= kFractionSumTolerance, o.key("segments"),
           fmt::format("(fractions summing to {})", format_value(sum)),
@@ -145,20 +149,23 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
 /// Refuses a reference path that folds, a coiled length that does not match the path
 /// without a pre_elongation_m, and a pre-elongation the TCA cannot have.
 double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
-  const ReferencePath ref = reference_path(a.routing, model.reference_curvature_B_1_m, model.length_m);
+  const ReferencePath ref =
+      reference_path(a.routing, model.reference_curvature_B_1_m, model.length_m);
   const bool straight = a.routing.type == Routing::Type::kStraight;
   const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
-  require(ref.min_axial > 0.0, routing_key,
-          straight ? show(o.required("routing").at("offset_m")) : format_value(a.routing.radius_m),
-          fmt::format("makes the reference string path fold on the precurved body: e3 . (e3 + "
-                      "omega* x r + r') = {} at s = {} m, must be > 0 (for a straight string: the "
-                      "offset toward the centre of curvature times |omega*_perp| must be < 1)",
-                      fmt::format("{:.6g}", ref.min_axial), fmt::format("{:.6g}", ref.min_axial_s_m)));
+  require(
+      ref.min_axial > 0.0, routing_key,
+      straight ? show(o.required("routing").at("offset_m")) : format_value(a.routing.radius_m),
+      fmt::format("makes the reference string path fold on the precurved body: e3 . (e3 + "
+                  "omega* x r + r') = {} at s = {} m, must be > 0 (for a straight string: the "
+                  "offset toward the centre of curvature times |omega*_perp| must be < 1)",
+                  fmt::format("{:.6g}", ref.min_axial), fmt::format("{:.6g}", ref.min_axial_s_m)));
   const bool has_pre = o.has("pre_elongation_m");
   if (a.drive.type != Drive::Type::kTca) {
     if (has_pre) {
-      throw InputError(o.key("pre_elongation_m"), show(o.required("pre_elongation_m")),
-                       "applies only to a TCA drive (a tension drive's rest length is its path length)");
+      throw InputError(
+          o.key("pre_elongation_m"), show(o.required("pre_elongation_m")),
+          "applies only to a TCA drive (a tension drive's rest length is its path length)");
     }
     return ref.length_m;
   }
@@ -169,8 +176,8 @@ double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
     require(std::abs(mismatch) <= kCoiledLengthRelativeTolerance, coiled_key, p.coiled_length_m,
             fmt::format("must equal the reference path length {} m of {} (within {} relative; it "
                         "differs by {:.3g}), or {} must give the TCA's elongation there",
-                        fmt::format("{:.10g}", ref.length_m), o.path(), kCoiledLengthRelativeTolerance, mismatch,
-                        o.key("pre_elongation_m")));
+                        fmt::format("{:.10g}", ref.length_m), o.path(),
+                        kCoiledLengthRelativeTolerance, mismatch, o.key("pre_elongation_m")));
     return ref.length_m;
   }
   const double pre = a.pre_elongation_m;
@@ -180,14 +187,16 @@ double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
             "must be >= 0 for an extension TCA (its coils cannot be shorter than closed)");
   }
   // delta = l (sin alpha - sin alpha0) with alpha in (0, 90) deg: -L < delta < l - L.
-  require(pre > -p.coiled_length_m && pre < p.fiber_length_m - p.coiled_length_m, pre_key, pre,
-          fmt::format("must lie in (-coiled_length_m, fiber_length_m - coiled_length_m) = ({}, {}) m "
-                      "of TCA '{}' (a coil between flat and straight)",
-                      format_value(-p.coiled_length_m), format_value(p.fiber_length_m - p.coiled_length_m),
-                      a.drive.tca_id));
-  require(pre < ref.length_m, pre_key, pre,
-          fmt::format("must be below the reference path length {} m (the rest length must be positive)",
-                      fmt::format("{:.10g}", ref.length_m)));
+  require(
+      pre > -p.coiled_length_m && pre < p.fiber_length_m - p.coiled_length_m, pre_key, pre,
+      fmt::format("must lie in (-coiled_length_m, fiber_length_m - coiled_length_m) = ({}, {}) m "
+                  "of TCA '{}' (a coil between flat and straight)",
+                  format_value(-p.coiled_length_m),
+                  format_value(p.fiber_length_m - p.coiled_length_m), a.drive.tca_id));
+  require(
+      pre < ref.length_m, pre_key, pre,
+      fmt::format("must be below the reference path length {} m (the rest length must be positive)",
+                  fmt::format("{:.10g}", ref.length_m)));
   return ref.length_m - pre;
 }
 
@@ -202,11 +211,13 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
     // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
     // possibly); 1e9 or 2.0 are floats, which are refused.
     const json& c = o.required("count");
-    const bool small = c.is_number_unsigned() ? c.get<unsigned long long>() <= static_cast<unsigned long long>(kMaxCount)
+    const bool small = c.is_number_unsigned() ? c.get<unsigned long long>() <=
+                                                    static_cast<unsigned long long>(kMaxCount)
                                               : c.is_number_integer();
     const long long n = small ? c.get<long long>() : 0;
     if (n < 1 || n > kMaxCount) {
-      throw InputError(o.key("count"), show(c), fmt::format("must be an integer in [1, {}]", kMaxCount));
+      throw InputError(o.key("count"), show(c),
+                       fmt::format("must be an integer in [1, {}]", kMaxCount));
     }
     a.count = static_cast<int>(n);
   }

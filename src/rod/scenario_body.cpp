@@ -28,7 +28,7 @@ namespace {
 /// (1 - 2^-5) zeta(5) in closed form and the second decays like exp(-n pi), so the result
 /// is exact to round-off after a handful of terms.
 double rectangle_saint_venant_torsion(double w_m, double h_m) {
-  constexpr double kZeta5 = 1.0369277551433699263;  // Riemann zeta(5)
+  constexpr double kZeta5 = 1.0369277551433699263;      // Riemann zeta(5)
   constexpr double kOddZeta5 = (31.0 / 32.0) * kZeta5;  // sum over odd n of 1/n^5
   constexpr int kMaxTerms = 200;
   const double a = std::max(w_m, h_m);
@@ -100,8 +100,8 @@ BodyMaterial parse_body_material(const Obj& o) {
   m.youngs_modulus_Pa = o.positive("youngs_modulus_Pa");
   m.poisson_ratio = o.number("poisson_ratio");
   // 0.5 (incompressible) is allowed: the paper uses it for EcoFlex.
-  require(m.poisson_ratio >= 0.0 && m.poisson_ratio <= 0.5, o.key("poisson_ratio"),
-          m.poisson_ratio, "must lie in [0, 0.5]");
+  require(m.poisson_ratio >= 0.0 && m.poisson_ratio <= 0.5, o.key("poisson_ratio"), m.poisson_ratio,
+          "must lie in [0, 0.5]");
   m.shear_modulus_Pa = m.youngs_modulus_Pa / (2.0 * (1.0 + m.poisson_ratio));
   if (const auto psi = o.optional_number("density_kg_m3")) {
     require(*psi >= 0.0, o.key("density_kg_m3"), *psi, "must not be negative");

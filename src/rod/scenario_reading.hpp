@@ -94,9 +94,9 @@ class Obj {
     }
     for (auto it = j.begin(); it != j.end(); ++it) {
       if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end()) {
-        throw InputError(key(it.key()), show(it.value()),
-                         fmt::format("is not an allowed key here (allowed: {})",
-                                     fmt::join(allowed, ", ")));
+        throw InputError(
+            key(it.key()), show(it.value()),
+            fmt::format("is not an allowed key here (allowed: {})", fmt::join(allowed, ", ")));
       }
     }
   }
@@ -172,7 +172,7 @@ class Obj {
 /// Reads the discriminating string of a polymorphic object (e.g. `shape`, `type`) before
 /// the object's allowed keys are known.
 inline std::string peek_choice(const json& j, const std::string& path, const std::string& k,
-                        const std::vector<std::string>& options) {
+                               const std::vector<std::string>& options) {
   if (!j.is_object()) {
     throw InputError(path.empty() ? "(document)" : path, show(j),
                      fmt::format("must be a JSON object, not {}", type_name(j)));
@@ -193,7 +193,6 @@ inline std::string peek_choice(const json& j, const std::string& path, const std
   return s;
 }
 
-
 // ---------------------------------------------------------------------------------------
 // Readers of the parts (scenario_body.cpp, scenario_tca.cpp, scenario_actuators.cpp).
 
@@ -213,7 +212,8 @@ double above_absolute_zero_K(double t_degC, const std::string& key);
 /// Checks that the material's moduli and diameter ratio are positive at t_K.
 void check_material_positive_at(const tca::Material& m, double t_K, const std::string& key);
 /// The `tcas` object: TCAs by id.
-std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j, const std::string& path,
+std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j,
+                                                                  const std::string& path,
                                                                   const std::string& base_dir);
 
 /// One entry of `actuators` (routing, count, drive, rest length) on the body `model`.

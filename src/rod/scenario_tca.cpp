@@ -47,7 +47,8 @@ std::shared_ptr<const tca::Tca> parse_tca(const json& j, const std::string& path
     const double alpha_deg = o.number("pitch_angle_deg");
     require(alpha_deg > 0.0 && alpha_deg < 90.0, o.key("pitch_angle_deg"), alpha_deg,
             "must lie in (0, 90)");
-    p.fiber_length_m = tca::fiber_length_from_pitch(p.coiled_length_m, units::deg_to_rad(alpha_deg));
+    p.fiber_length_m =
+        tca::fiber_length_from_pitch(p.coiled_length_m, units::deg_to_rad(alpha_deg));
   }
   p.outer_diameter_m = o.positive("outer_diameter_m");
   p.twist_turns = o.positive("twist_turns");
@@ -83,8 +84,7 @@ tca::PolynomialDegC parse_property(const Obj& o, const std::string& k) {
     return p;
   }
   if (!v.is_object()) {
-    throw InputError(o.key(k), show(v),
-                     "must be a number or {\"polynomial_degC\": [c0, c1, ...]}");
+    throw InputError(o.key(k), show(v), "must be a number or {\"polynomial_degC\": [c0, c1, ...]}");
   }
   const Obj po(v, o.key(k), {"polynomial_degC"});
   const json& c = po.required("polynomial_degC");
@@ -105,9 +105,9 @@ tca::F12Form parse_f12_form(const Obj& o) {
 
 /// Requires a temperature in degC to lie above absolute zero; returns it in kelvin.
 double above_absolute_zero_K(double t_degC, const std::string& key) {
-  require(t_degC > -units::kZeroCelsius_K, key, t_degC,
-          t_degC < -units::kZeroCelsius_K ? "is below absolute zero"
-                                          : "is not above absolute zero");
+  require(
+      t_degC > -units::kZeroCelsius_K, key, t_degC,
+      t_degC < -units::kZeroCelsius_K ? "is below absolute zero" : "is not above absolute zero");
   return units::degC_to_K(t_degC);
 }
 

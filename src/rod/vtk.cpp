@@ -39,9 +39,9 @@ std::string csv_field(const std::string& s) {
 std::vector<ShapeCurve> shape_curves(const RodModel& model, const Result& result) {
   const std::size_t n = result.centerline_s_m.size();
   if (result.centerline_p_W_m.size() != n || result.centerline_R_WB.size() != n) {
-    throw std::invalid_argument(fmt::format(
-        "shape_curves: centerline arrays differ in length (s: {}, p: {}, R: {})", n,
-        result.centerline_p_W_m.size(), result.centerline_R_WB.size()));
+    throw std::invalid_argument(
+        fmt::format("shape_curves: centerline arrays differ in length (s: {}, p: {}, R: {})", n,
+                    result.centerline_p_W_m.size(), result.centerline_R_WB.size()));
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (!std::isfinite(result.centerline_s_m[k]) || !result.centerline_p_W_m[k].allFinite() ||
@@ -58,7 +58,8 @@ std::vector<ShapeCurve> shape_curves(const RodModel& model, const Result& result
     c.p_W_m.reserve(n);
     for (std::size_t k = 0; k < n; ++k) {
       // String path in the world frame: q_i = p + R r_i(s) (r_i in the body frame).
-      c.p_W_m.push_back(result.centerline_p_W_m[k] + result.centerline_R_WB[k] * a.routing.r(result.centerline_s_m[k]));
+      c.p_W_m.push_back(result.centerline_p_W_m[k] +
+                        result.centerline_R_WB[k] * a.routing.r(result.centerline_s_m[k]));
     }
     curves.push_back(std::move(c));
   }
@@ -96,7 +97,9 @@ std::string vtp_document(const RodModel& model, const Result& result) {
 
   std::string doc;
   doc += "<?xml version=\"1.0\"?>\n";
-  doc += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  doc +=
+      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n";
   doc += "  <PolyData>\n";
   doc += "    <FieldData>\n";
   doc += string_array("scenario", {result.scenario});
@@ -104,27 +107,36 @@ std::string vtp_document(const RodModel& model, const Result& result) {
   doc += string_array("curve_names", names);
   doc += "    </FieldData>\n";
   doc += fmt::format(
-      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+      "NumberOfStrips=\"0\" "
       "NumberOfPolys=\"0\">\n",
       points, lines);
   doc += "      <PointData Scalars=\"s_m\">\n";
-  doc += "        <DataArray type=\"Float64\" Name=\"s_m\" format=\"ascii\">\n          " + s_values + "\n";
+  doc += "        <DataArray type=\"Float64\" Name=\"s_m\" format=\"ascii\">\n          " +
+         s_values + "\n";
   doc += "        </DataArray>\n";
-  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " + ids + "\n";
+  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " +
+         ids + "\n";
   doc += "        </DataArray>\n";
   doc += "      </PointData>\n";
   doc += "      <CellData Scalars=\"actuator_id\">\n";
-  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " + cell_ids + "\n";
+  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " +
+         cell_ids + "\n";
   doc += "        </DataArray>\n";
   doc += "      </CellData>\n";
   doc += "      <Points>\n";
-  doc += "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n" + coords;
+  doc +=
+      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">\n" +
+      coords;
   doc += "        </DataArray>\n";
   doc += "      </Points>\n";
   doc += "      <Lines>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " + connectivity + "\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " +
+         connectivity + "\n";
   doc += "        </DataArray>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " + offsets + "\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " +
+         offsets + "\n";
   doc += "        </DataArray>\n";
   doc += "      </Lines>\n";
   doc += "    </Piece>\n";
@@ -143,8 +155,8 @@ std::string shape_csv_document(const RodModel& model, const Result& result) {
     const std::string name = csv_field(c.name);
     for (std::size_t k = 0; k < c.p_W_m.size(); ++k) {
       const Eigen::Vector3d& p = c.p_W_m[k];
-      text += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", name, c.actuator_id, c.s_m[k], p.x(), p.y(),
-                          p.z());
+      text += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", name, c.actuator_id, c.s_m[k],
+                          p.x(), p.y(), p.z());
     }
   }
   return text;

@@ -17,10 +17,10 @@ namespace tcasim::rod {
 
 /// One polyline of a shape.
 struct ShapeCurve {
-  std::string name;   ///< "centerline" or the actuator's name
-  int actuator_id;    ///< -1 for the centerline, else the actuator's index in the model
-  std::vector<double> s_m;               ///< reference arc length at each point [m]
-  std::vector<Eigen::Vector3d> p_W_m;    ///< point in the world frame [m]
+  std::string name;         ///< "centerline" or the actuator's name
+  int actuator_id;          ///< -1 for the centerline, else the actuator's index in the model
+  std::vector<double> s_m;  ///< reference arc length at each point [m]
+  std::vector<Eigen::Vector3d> p_W_m;  ///< point in the world frame [m]
 };
 
 /// The centerline and the actuator paths of `result` (sampled at its centerline samples).

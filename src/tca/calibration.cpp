@@ -67,7 +67,12 @@ struct Problem : Eigen::DenseFunctor<double> {
   Problem(const Parameters& g, const Material& m, const std::vector<Measurement>& d,
           const std::vector<FitParameter>& f, std::vector<double> s, double h)
       : Eigen::DenseFunctor<double>(static_cast<int>(f.size()), static_cast<int>(d.size())),
-        geometry(g), initial(m), data(d), fit(f), scale(std::move(s)), step(h) {}
+        geometry(g),
+        initial(m),
+        data(d),
+        fit(f),
+        scale(std::move(s)),
+        step(h) {}
 
   Material material(const Eigen::VectorXd& x) const {
     Material m = initial;
@@ -154,8 +159,9 @@ std::vector<Measurement> read_measurements_csv(const std::string& path) {
     };
     Measurement m{};
     const double t_degC = number(c_t, "temperature_degC");
-    require(t_degC > -units::kZeroCelsius_K, fmt::format("{}:{} column temperature_degC", path, line_no),
-            t_degC, "is below absolute zero");
+    require(t_degC > -units::kZeroCelsius_K,
+            fmt::format("{}:{} column temperature_degC", path, line_no), t_degC,
+            "is below absolute zero");
     m.temperature_K = units::degC_to_K(t_degC);
     m.elongation_m = number(c_e, "elongation_m");
     m.tension_N = c_f >= 0 ? number(c_f, "tension_N")
@@ -168,11 +174,16 @@ std::vector<Measurement> read_measurements_csv(const std::string& path) {
 
 const char* to_string(FitParameter p) {
   switch (p) {
-    case FitParameter::kYoungsModulus: return "youngs_modulus";
-    case FitParameter::kYoungsModulusSlope: return "youngs_modulus_slope";
-    case FitParameter::kShearModulus: return "shear_modulus";
-    case FitParameter::kShearModulusSlope: return "shear_modulus_slope";
-    case FitParameter::kExpansion: return "expansion";
+    case FitParameter::kYoungsModulus:
+      return "youngs_modulus";
+    case FitParameter::kYoungsModulusSlope:
+      return "youngs_modulus_slope";
+    case FitParameter::kShearModulus:
+      return "shear_modulus";
+    case FitParameter::kShearModulusSlope:
+      return "shear_modulus_slope";
+    case FitParameter::kExpansion:
+      return "expansion";
   }
   return "?";
 }
@@ -190,10 +201,14 @@ FitParameter parse_fit_parameter(const std::string& name, const std::string& key
 
 const char* to_string(CalibrationStatus s) {
   switch (s) {
-    case CalibrationStatus::kConverged: return "converged";
-    case CalibrationStatus::kMaxEvaluations: return "max_evaluations";
-    case CalibrationStatus::kToleranceTooSmall: return "tolerance_too_small";
-    case CalibrationStatus::kFailed: return "failed";
+    case CalibrationStatus::kConverged:
+      return "converged";
+    case CalibrationStatus::kMaxEvaluations:
+      return "max_evaluations";
+    case CalibrationStatus::kToleranceTooSmall:
+      return "tolerance_too_small";
+    case CalibrationStatus::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -201,10 +216,14 @@ const char* to_string(CalibrationStatus s) {
 double parameter_value(const Material& m, FitParameter p) {
   const double t = m.reference_temperature_K;
   switch (p) {
-    case FitParameter::kYoungsModulus: return m.youngs_modulus_Pa.value(t);
-    case FitParameter::kYoungsModulusSlope: return m.youngs_modulus_Pa.derivative(t);
-    case FitParameter::kShearModulus: return m.shear_modulus_Pa.value(t);
-    case FitParameter::kShearModulusSlope: return m.shear_modulus_Pa.derivative(t);
+    case FitParameter::kYoungsModulus:
+      return m.youngs_modulus_Pa.value(t);
+    case FitParameter::kYoungsModulusSlope:
+      return m.youngs_modulus_Pa.derivative(t);
+    case FitParameter::kShearModulus:
+      return m.shear_modulus_Pa.value(t);
+    case FitParameter::kShearModulusSlope:
+      return m.shear_modulus_Pa.derivative(t);
     case FitParameter::kExpansion:
       return m.diameter.type == DiameterLaw::Type::kLinearExpansion
                  ? m.diameter.linear_expansion_1_K
@@ -228,10 +247,18 @@ Material with_parameter(const Material& m, FitParameter p, double value) {
     poly.coefficients[0] -= ds * t_ref_degC;
   };
   switch (p) {
-    case FitParameter::kYoungsModulus: shift_value(out.youngs_modulus_Pa); break;
-    case FitParameter::kYoungsModulusSlope: shift_slope(out.youngs_modulus_Pa); break;
-    case FitParameter::kShearModulus: shift_value(out.shear_modulus_Pa); break;
-    case FitParameter::kShearModulusSlope: shift_slope(out.shear_modulus_Pa); break;
+    case FitParameter::kYoungsModulus:
+      shift_value(out.youngs_modulus_Pa);
+      break;
+    case FitParameter::kYoungsModulusSlope:
+      shift_slope(out.youngs_modulus_Pa);
+      break;
+    case FitParameter::kShearModulus:
+      shift_value(out.shear_modulus_Pa);
+      break;
+    case FitParameter::kShearModulusSlope:
+      shift_slope(out.shear_modulus_Pa);
+      break;
     case FitParameter::kExpansion:
       if (out.diameter.type == DiameterLaw::Type::kLinearExpansion) {
         out.diameter.linear_expansion_1_K = value;
@@ -286,13 +313,17 @@ CalibrationResult calibrate(const Parameters& parameters, const Material& initia
     case S::CosinusTooSmall:
       result.status = CalibrationStatus::kConverged;
       break;
-    case S::TooManyFunctionEvaluation: result.status = CalibrationStatus::kMaxEvaluations; break;
+    case S::TooManyFunctionEvaluation:
+      result.status = CalibrationStatus::kMaxEvaluations;
+      break;
     case S::FtolTooSmall:
     case S::XtolTooSmall:
     case S::GtolTooSmall:
       result.status = CalibrationStatus::kToleranceTooSmall;
       break;
-    default: result.status = CalibrationStatus::kFailed; break;
+    default:
+      result.status = CalibrationStatus::kFailed;
+      break;
   }
   result.message = fmt::format("Eigen LevenbergMarquardt status {}", static_cast<int>(status));
   if (!problem.last_error.empty()) {

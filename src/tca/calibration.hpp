@@ -56,17 +56,17 @@ struct CalibrationOptions {
 
 /// Outcome of a calibration.
 enum class CalibrationStatus {
-  kConverged,           ///< a relative reduction, step or error test of MINPACK was met
-  kMaxEvaluations,      ///< max_function_evaluations reached
-  kToleranceTooSmall,   ///< ftol/xtol/gtol too small for further progress (usually at optimum)
-  kFailed,              ///< improper input or a model evaluation failed
+  kConverged,          ///< a relative reduction, step or error test of MINPACK was met
+  kMaxEvaluations,     ///< max_function_evaluations reached
+  kToleranceTooSmall,  ///< ftol/xtol/gtol too small for further progress (usually at optimum)
+  kFailed,             ///< improper input or a model evaluation failed
 };
 const char* to_string(CalibrationStatus s);
 
 /// Fitted values with their uncertainty.
 struct CalibrationResult {
-  Material material;                      ///< the material with the fitted values
-  std::vector<FitParameter> parameters;   ///< in the order requested
+  Material material;                     ///< the material with the fitted values
+  std::vector<FitParameter> parameters;  ///< in the order requested
   std::vector<double> initial_values;
   std::vector<double> values;
   /// sqrt(diag((J^T J)^-1) s^2) with s^2 = SSR/(m - p); NaN if m <= p or J^T J singular.

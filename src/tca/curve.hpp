@@ -11,9 +11,9 @@ namespace tcasim::tca {
 /// One point of an elongation-temperature curve.
 struct CurvePoint {
   double temperature_K;
-  double elongation_m;      ///< delta (0 while the coils of an extension TCA are closed)
-  double tension_N;         ///< the applied tension F (constant along the curve)
-  double pitch_angle_rad;   ///< alpha, Eq. (5)
+  double elongation_m;     ///< delta (0 while the coils of an extension TCA are closed)
+  double tension_N;        ///< the applied tension F (constant along the curve)
+  double pitch_angle_rad;  ///< alpha, Eq. (5)
   bool coils_closed;
 };
 

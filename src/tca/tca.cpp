@@ -108,7 +108,8 @@ double PolynomialDegC::value(double t_K) const {
 double PolynomialDegC::derivative(double t_K) const {
   const double t = units::K_to_degC(t_K);
   double v = 0.0;
-  for (std::size_t i = coefficients.size(); i-- > 1;) v = v * t + static_cast<double>(i) * coefficients[i];
+  for (std::size_t i = coefficients.size(); i-- > 1;)
+    v = v * t + static_cast<double>(i) * coefficients[i];
   return v;
 }
 
@@ -175,10 +176,10 @@ Tca::Tca(const Parameters& parameters, Material material)
   require(n_ >= 1.0, "outer_diameter_m", D,
           fmt::format("gives n = 2 cos(alpha0) l/(pi D) = {} coils; must give n >= 1",
                       format_value(n_)));
-  require(material_.min_temperature_K < material_.max_temperature_K, "material.valid_range_degC",
-          fmt::format("[{}, {}]", degC(material_.min_temperature_K),
-                      degC(material_.max_temperature_K)),
-          "must have lo < hi");
+  require(
+      material_.min_temperature_K < material_.max_temperature_K, "material.valid_range_degC",
+      fmt::format("[{}, {}]", degC(material_.min_temperature_K), degC(material_.max_temperature_K)),
+      "must have lo < hi");
   const double t_ref_K = std::clamp(material_.reference_temperature_K, material_.min_temperature_K,
                                     material_.max_temperature_K);
   try {
@@ -289,14 +290,13 @@ double Tca::temperature_for_tension(double tension_N, double elongation_m, doubl
     throw DomainError(fmt::format(
         "TCA: no temperature in [{} degC, {} degC] gives tension {} N at elongation {} m "
         "(tension there ranges from {} N to {} N)",
-        degC(t_lo_K), degC(t_hi_K), tension_N, elongation_m, tension(elongation_m, t_lo_K).tension_N,
-        tension(elongation_m, t_hi_K).tension_N));
+        degC(t_lo_K), degC(t_hi_K), tension_N, elongation_m,
+        tension(elongation_m, t_lo_K).tension_N, tension(elongation_m, t_hi_K).tension_N));
   }
   return root->x;
 }
 
-std::optional<double> Tca::onset_temperature(double tension_N, double t_lo_K,
-                                             double t_hi_K) const {
+std::optional<double> Tca::onset_temperature(double tension_N, double t_lo_K, double t_hi_K) const {
   if (p_.kind != Kind::kExtension) {
     throw InputError("kind", to_string(p_.kind),
                      "has no closed-coil onset temperature (only extension TCAs do)");
@@ -321,8 +321,8 @@ void check_segments(const std::vector<Segment>& segments) {
             fmt::format("segments[{}].fraction", i), segments[i].fraction, "must lie in (0, 1]");
     sum += segments[i].fraction;
   }
-  require(std::abs(sum - 1.0) <= kFractionSumTol, "segments", fmt::format("fractions summing to {}", sum),
-          "must sum to 1");
+  require(std::abs(sum - 1.0) <= kFractionSumTol, "segments",
+          fmt::format("fractions summing to {}", sum), "must sum to 1");
 }
 }  // namespace
 
@@ -383,8 +383,8 @@ SeriesTensionState series_tension(const Tca& tca, double elongation_m,
   }
   out.dF_ddelta_N_m = 1.0 / compliance;
   for (std::size_t k = 0; k < segments.size(); ++k) {
-    out.dF_dT_N_K[k] = segments[k].fraction * states[k].dF_dT_N_K / states[k].dF_ddelta_N_m *
-                       out.dF_ddelta_N_m;
+    out.dF_dT_N_K[k] =
+        segments[k].fraction * states[k].dF_dT_N_K / states[k].dF_ddelta_N_m * out.dF_ddelta_N_m;
   }
   return out;
 }

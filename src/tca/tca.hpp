@@ -43,18 +43,18 @@ struct DiameterLaw {
 
 /// Material properties at one temperature with their temperature derivatives.
 struct MaterialState {
-  double youngs_modulus_Pa;      ///< E_T
-  double shear_modulus_Pa;       ///< G_T
-  double diameter_ratio;         ///< d(T)/d0
-  double dE_dT_Pa_K;             ///< dE_T/dT
-  double dG_dT_Pa_K;             ///< dG_T/dT
-  double dratio_dT_1_K;          ///< d(d/d0)/dT
+  double youngs_modulus_Pa;  ///< E_T
+  double shear_modulus_Pa;   ///< G_T
+  double diameter_ratio;     ///< d(T)/d0
+  double dE_dT_Pa_K;         ///< dE_T/dT
+  double dG_dT_Pa_K;         ///< dG_T/dT
+  double dratio_dT_1_K;      ///< d(d/d0)/dT
 };
 
 /// Temperature-dependent properties of a twisted fiber (data, with its source named).
 struct Material {
-  std::string name;                 ///< id (file stem for shipped materials)
-  std::string source;               ///< where the numbers come from
+  std::string name;                         ///< id (file stem for shipped materials)
+  std::string source;                       ///< where the numbers come from
   double reference_temperature_K = 298.15;  ///< T_ref, at which d = d0
   PolynomialDegC youngs_modulus_Pa;         ///< E_T(T)
   PolynomialDegC shear_modulus_Pa;          ///< G_T(T)
@@ -85,17 +85,17 @@ double fiber_length_from_pitch(double coiled_length_m, double pitch_angle_rad);
 
 /// Coefficients of Eq. (2) at one pitch angle and temperature.
 struct Coefficients {
-  double f11_m_N;     ///< f11 [m/N], Eq. (3)
-  double f12_1_N;     ///< f12 [1/N], Eq. (4) with the chosen factor
-  double tau_Nm;      ///< tau [N m], Eq. (1)
+  double f11_m_N;  ///< f11 [m/N], Eq. (3)
+  double f12_1_N;  ///< f12 [1/N], Eq. (4) with the chosen factor
+  double tau_Nm;   ///< tau [N m], Eq. (1)
 };
 
 /// Value and consistent tangents of the tension law F(delta, T).
 struct TensionState {
-  double tension_N;       ///< F
-  double dF_ddelta_N_m;   ///< dF/d delta
-  double dF_dT_N_K;       ///< dF/dT
-  double pitch_angle_rad; ///< alpha at this elongation, Eq. (5)
+  double tension_N;        ///< F
+  double dF_ddelta_N_m;    ///< dF/d delta
+  double dF_dT_N_K;        ///< dF/dT
+  double pitch_angle_rad;  ///< alpha at this elongation, Eq. (5)
   /// True for an extension TCA pushed below its closed length (delta < 0): the
   /// free-coil law is then an extrapolation; physically the coils are in contact.
   bool below_closed_length;
@@ -154,8 +154,7 @@ class Tca {
   /// Onset temperature of an extension TCA under tension F (F < 0 compresses it): the
   /// lowest temperature in [t_lo_K, t_hi_K] at which the coils open (delta leaves 0).
   /// Returns nullopt if they stay closed over the whole range.
-  std::optional<double> onset_temperature(double tension_N, double t_lo_K,
-                                          double t_hi_K) const;
+  std::optional<double> onset_temperature(double tension_N, double t_lo_K, double t_hi_K) const;
 
   /// Free stroke: the elongation at zero tension.
   double free_stroke(double t_K) const { return elongation(0.0, t_K).elongation_m; }

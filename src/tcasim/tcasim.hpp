@@ -20,4 +20,3 @@
 #include "rod/scenario.hpp"
 #include "tca/calibration.hpp"
 #include "tca/tca.hpp"
-

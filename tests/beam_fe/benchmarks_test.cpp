@@ -36,9 +36,8 @@ struct Reference {
   Vector3d tip;
 };
 /// [Simo1986] tip positions (8 elements).
-const Reference kSimoVuQuoc[] = {{300.0, {58.84, 22.33, 40.08}},
-                                 {450.0, {52.32, 18.62, 48.39}},
-                                 {600.0, {47.23, 15.79, 53.37}}};
+const Reference kSimoVuQuoc[] = {
+    {300.0, {58.84, 22.33, 40.08}}, {450.0, {52.32, 18.62, 48.39}}, {600.0, {47.23, 15.79, 53.37}}};
 
 Vector3d solve_tip(const rod::RodModel& m, int elements, int order) {
   Options opt;
@@ -68,13 +67,16 @@ TEST(BeamFeBenchmarks, BatheBolourchiBendMatchesSimoVuQuocWithinTheirOnePercentS
   constexpr double kPublishedSpread = 0.01;
   for (const Reference& ref : kSimoVuQuoc) {
     const rod::RodModel m = bend(0.1406, ref.P);
-    const Vector3d lin8 = solve_tip(m, 8, 1), quad8 = solve_tip(m, 8, 2), quad64 = solve_tip(m, 64, 2);
+    const Vector3d lin8 = solve_tip(m, 8, 1), quad8 = solve_tip(m, 8, 2),
+                   quad64 = solve_tip(m, 64, 2);
     const Vector3d polar = solve_tip(bend(1.0 / 6.0, ref.P), 64, 2);
-    std::printf("P = %g: reference (%.2f, %.2f, %.2f)\n", ref.P, ref.tip.x(), ref.tip.y(), ref.tip.z());
+    std::printf("P = %g: reference (%.2f, %.2f, %.2f)\n", ref.P, ref.tip.x(), ref.tip.y(),
+                ref.tip.z());
     auto row = [&](const char* what, const Vector3d& p) {
       const Vector3d d = p - ref.tip;
-      std::printf("  %-28s (%.3f, %.3f, %.3f)  diff (%+.3f, %+.3f, %+.3f) = %.2f %% of |p_ref|\n", what, p.x(),
-                  p.y(), p.z(), d.x(), d.y(), d.z(), 100.0 * d.cwiseAbs().maxCoeff() / ref.tip.norm());
+      std::printf("  %-28s (%.3f, %.3f, %.3f)  diff (%+.3f, %+.3f, %+.3f) = %.2f %% of |p_ref|\n",
+                  what, p.x(), p.y(), p.z(), d.x(), d.y(), d.z(),
+                  100.0 * d.cwiseAbs().maxCoeff() / ref.tip.norm());
     };
     row("J = 0.1406, 8 linear", lin8);
     row("J = 0.1406, 8 quadratic", quad8);

@@ -35,7 +35,8 @@ TEST(BeamFeClosedCoils, TcaHeldClosedByALoadAboveItsBlockedForceIsARigidStrutOnA
       const Solved s = run(m, opt);
       ASSERT_TRUE(s.summary.converged()) << s.summary.message;
       const rod::Result r = make_result(m, opt, s.state, s.summary);
-      EXPECT_NEAR(r.actuators[0].tension_N, cf.strut_tension_N, kExact * std::abs(cf.strut_tension_N));
+      EXPECT_NEAR(r.actuators[0].tension_N, cf.strut_tension_N,
+                  kExact * std::abs(cf.strut_tension_N));
       EXPECT_LE(std::abs(r.actuators[0].elongation_m), kExact * m.length_m);
       EXPECT_TRUE(r.actuators[0].coils_closed);
       EXPECT_NEAR(r.actuators[0].contact_force_N, fb - cf.strut_tension_N,

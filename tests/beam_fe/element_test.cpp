@@ -88,12 +88,16 @@ void check_element(int order, Integration integration) {
     const ElementEvaluation ev = disc.element(st, e, tensions);
     const VectorXd zero = VectorXd::Zero(6 * (order + 1));
     const MatrixXd K_fd = test_support::jacobian(
-        [&](const VectorXd& eta) { return disc.element(move_element(st, e, order, eta), e, tensions).residual; },
+        [&](const VectorXd& eta) {
+          return disc.element(move_element(st, e, order, eta), e, tensions).residual;
+        },
         zero);
     EXPECT_LT(scaled_difference(ev.tangent, K_fd), kTangentTolerance);
     for (std::size_t i = 0; i < tensions.size(); ++i) {
       const VectorXd g_fd = test_support::gradient(
-          [&](const VectorXd& eta) { return disc.element(move_element(st, e, order, eta), e, tensions).lengths_m[i]; },
+          [&](const VectorXd& eta) {
+            return disc.element(move_element(st, e, order, eta), e, tensions).lengths_m[i];
+          },
           zero);
       EXPECT_LT((ev.length_gradients[i] - g_fd).lpNorm<Eigen::Infinity>(),
                 kTangentTolerance * ev.length_gradients[i].lpNorm<Eigen::Infinity>());
@@ -101,10 +105,18 @@ void check_element(int order, Integration integration) {
   }
 }
 
-TEST(BeamFeElement, LinearReducedTangentMatchesFiniteDifferences) { check_element(1, Integration::kReduced); }
-TEST(BeamFeElement, LinearFullTangentMatchesFiniteDifferences) { check_element(1, Integration::kFull); }
-TEST(BeamFeElement, QuadraticReducedTangentMatchesFiniteDifferences) { check_element(2, Integration::kReduced); }
-TEST(BeamFeElement, QuadraticFullTangentMatchesFiniteDifferences) { check_element(2, Integration::kFull); }
+TEST(BeamFeElement, LinearReducedTangentMatchesFiniteDifferences) {
+  check_element(1, Integration::kReduced);
+}
+TEST(BeamFeElement, LinearFullTangentMatchesFiniteDifferences) {
+  check_element(1, Integration::kFull);
+}
+TEST(BeamFeElement, QuadraticReducedTangentMatchesFiniteDifferences) {
+  check_element(2, Integration::kReduced);
+}
+TEST(BeamFeElement, QuadraticFullTangentMatchesFiniteDifferences) {
+  check_element(2, Integration::kFull);
+}
 
 TEST(BeamFeElement, ResidualIsTheGradientOfTheElementEnergyAtZeroTensionsAndRotationsNearZero) {
   // Nodal rotations below the series threshold of the dual-number coefficients exercise
@@ -118,7 +130,9 @@ TEST(BeamFeElement, ResidualIsTheGradientOfTheElementEnergyAtZeroTensionsAndRota
   const std::vector<double> tensions{0.2, -0.15};
   const ElementEvaluation ev = disc.element(st, 5, tensions);
   const MatrixXd K_fd = test_support::jacobian(
-      [&](const VectorXd& eta) { return disc.element(move_element(st, 5, 2, eta), 5, tensions).residual; },
+      [&](const VectorXd& eta) {
+        return disc.element(move_element(st, 5, 2, eta), 5, tensions).residual;
+      },
       VectorXd::Zero(18));
   EXPECT_LT(scaled_difference(ev.tangent, K_fd), kTangentTolerance);
 }
@@ -164,7 +178,8 @@ TEST(BeamFeAssembly, BorderedTangentWithPinnedOrNormalTipConstraintMatchesFinite
     ASSERT_EQ(disc.constraint_count(), normal_only ? 1 : 3);
     State st = perturbed_state(disc, 13u, 0.002);
     st.tensions_N = {-0.02};
-    st.tip_reaction_W_N = normal_only ? Vector3d(0.012 * *c.normal_W) : Vector3d(0.01, -0.02, 0.005);
+    st.tip_reaction_W_N =
+        normal_only ? Vector3d(0.012 * *c.normal_W) : Vector3d(0.01, -0.02, 0.005);
     const double lambda = 0.6;
     Eigen::SparseMatrix<double> K;
     const VectorXd r = disc.residual(st, lambda, &K);
@@ -208,10 +223,11 @@ TEST(BeamFeDual, RotationFormulasMatchSo3AndTheirDerivativesMatchFiniteDifferenc
       p[k].d[k] = 1.0;
     }
     const so3::Coefficients<D3> c = so3::coefficients(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    const auto E = combine(D3(1.0), c.a, c.b, p);     // Exp = I + a K + b K^2
-    const auto J = combine(D3(1.0), -c.b, c.c, p);    // Jr = I - b K + c K^2
+    const auto E = combine(D3(1.0), c.a, c.b, p);       // Exp = I + a K + b K^2
+    const auto J = combine(D3(1.0), -c.b, c.c, p);      // Jr = I - b K + c K^2
     const auto Ji = combine(D3(1.0), D3(0.5), c.d, p);  // Jr^-1 = I + K/2 + d K^2
-    const Eigen::Matrix3d E0 = so3::exp(phi), J0 = so3::right_jacobian(phi), Ji0 = so3::right_jacobian_inverse(phi);
+    const Eigen::Matrix3d E0 = so3::exp(phi), J0 = so3::right_jacobian(phi),
+                          Ji0 = so3::right_jacobian_inverse(phi);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         EXPECT_NEAR(E[3 * i + j].v, E0(i, j), kRoundOff);

@@ -10,8 +10,8 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
-#include "rod/closed_form.hpp"
 #include "models.hpp"
+#include "rod/closed_form.hpp"
 #include "support/convergence.hpp"
 
 namespace tcasim::beam_fe {
@@ -29,7 +29,6 @@ constexpr double kPi = units::kPi;
 /// 1e-10 by default; here tightened): constant-strain states are exact on any mesh.
 constexpr double kExact = 1e-10;
 
-
 /// Two straight tension strings (one doubled) on a steel-like rod, no gravity.
 rod::RodModel straight_strings_rod() {
   rod::RodModel m = testing::stiffness_rod(0.5, 60.0, 25.0, 0.02, 0.03, 0.015);
@@ -39,7 +38,8 @@ rod::RodModel straight_strings_rod() {
 }
 
 /// docs/conventions.md "Closed form": constant strains and elongations from the tensions.
-void closed_form(const rod::RodModel& m, Vector3d& nu, Vector3d& omega, std::vector<double>& delta) {
+void closed_form(const rod::RodModel& m, Vector3d& nu, Vector3d& omega,
+                 std::vector<double>& delta) {
   std::vector<double> cT;
   for (const rod::Actuator& a : m.actuators) cT.push_back(a.count * a.drive.tension_N);
   const rod::ConstantStrains cf = rod::closed_form_strains(m, cT);
@@ -78,7 +78,8 @@ TEST(BeamFeSolver, StraightStringsGiveExactTensionsElongationsAndNodalRotationsO
 
 /// Errors of the tip position over meshes `elements`, against `exact`.
 std::vector<double> tip_errors(const rod::RodModel& m, int order, const std::vector<int>& elements,
-                               const Vector3d& exact, Integration integration = Integration::kReduced) {
+                               const Vector3d& exact,
+                               Integration integration = Integration::kReduced) {
   std::vector<double> e;
   for (const int n : elements) {
     Options opt = options(n, order);
@@ -108,10 +109,13 @@ TEST(BeamFeSolver, StraightStringsTipPositionConvergesAtTheElementOrder) {
   const Vector3d tip = m.length_m * so3::left_jacobian(m.length_m * omega) * nu;
   const std::vector<int> lin{2, 4, 8, 16}, quad{1, 2, 4, 8};
   const std::vector<double> e1 = tip_errors(m, 1, lin, tip), e2 = tip_errors(m, 2, quad, tip);
-  std::printf("straight strings, linear:\n%s", test_support::convergence_table(mesh_sizes(m.length_m, lin), e1).c_str());
-  std::printf("straight strings, quadratic:\n%s", test_support::convergence_table(mesh_sizes(m.length_m, quad), e2).c_str());
+  std::printf("straight strings, linear:\n%s",
+              test_support::convergence_table(mesh_sizes(m.length_m, lin), e1).c_str());
+  std::printf("straight strings, quadratic:\n%s",
+              test_support::convergence_table(mesh_sizes(m.length_m, quad), e2).c_str());
   test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, lin), e1, kLinearOrder, kLinearBracket);
-  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder, kQuadraticBracket);
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder,
+                                     kQuadraticBracket);
 }
 
 TEST(BeamFeSolver, TcaDriveTensionSolvesTheClosedFormScalarEquation) {
@@ -136,7 +140,8 @@ TEST(BeamFeSolver, TcaDriveTensionSolvesTheClosedFormScalarEquation) {
       ASSERT_TRUE(s.summary.converged()) << s.summary.message;
       const rod::Result res = make_result(m, opt, s.state, s.summary);
       EXPECT_NEAR(res.actuators[0].tension_N, T, kExact * std::abs(T));
-      EXPECT_NEAR(res.actuators[0].elongation_m, -m.length_m * C * T, kExact * m.length_m * C * std::abs(T));
+      EXPECT_NEAR(res.actuators[0].elongation_m, -m.length_m * C * T,
+                  kExact * m.length_m * C * std::abs(T));
       // A heated extension TCA pushes (T < 0) and bends the rod away from its +x offset.
       EXPECT_LT(T, 0.0);
       EXPECT_LT(res.tip_position_W_m.x(), 0.0);
@@ -160,7 +165,9 @@ void check_constant_curvature(const rod::RodModel& m) {
   const Solved s = run(m, options(16, 2));
   ASSERT_TRUE(s.summary.converged()) << s.summary.message;
   for (std::size_t k = 0; k < s.state.s_m.size(); ++k) {
-    EXPECT_LT((s.state.q_WB[k].toRotationMatrix() - so3::exp(s.state.s_m[k] * omega)).cwiseAbs().maxCoeff(),
+    EXPECT_LT((s.state.q_WB[k].toRotationMatrix() - so3::exp(s.state.s_m[k] * omega))
+                  .cwiseAbs()
+                  .maxCoeff(),
               kExact);
   }
   const Vector3d tip = m.length_m * so3::left_jacobian(m.length_m * omega) * Vector3d::UnitZ();
@@ -192,8 +199,9 @@ TEST(BeamFeSolver, MattiassonCantileverMatchesTheElasticaTable) {
   // Reference values are published to 5 digits (+-5e-6); 32 quadratic elements are
   // converged far below that.
   constexpr double kFiveDigits = 1e-5;
-  for (const Mattiasson ref : {Mattiasson{1, 0.30172, 0.05643, 0.46135}, Mattiasson{2, 0.49346, 0.16064, -1},
-                               Mattiasson{5, 0.71379, 0.38763, -1}, Mattiasson{10, 0.81061, 0.55500, 1.43029}}) {
+  for (const Mattiasson ref :
+       {Mattiasson{1, 0.30172, 0.05643, 0.46135}, Mattiasson{2, 0.49346, 0.16064, -1},
+        Mattiasson{5, 0.71379, 0.38763, -1}, Mattiasson{10, 0.81061, 0.55500, 1.43029}}) {
     SCOPED_TRACE(::testing::Message() << "k = " << ref.k);
     rod::RodModel m = testing::stiffness_rod(1.0, 1e7, 1e7, 1.0, 1.0, 1.0);
     m.tip_force_W_N = {ref.k, 0.0, 0.0};
@@ -201,8 +209,9 @@ TEST(BeamFeSolver, MattiassonCantileverMatchesTheElasticaTable) {
     ASSERT_TRUE(s.summary.converged()) << s.summary.message;
     const Vector3d tip = s.state.p_W_m.back();
     const Vector3d t = s.state.q_WB.back() * Vector3d::UnitZ();
-    std::printf("Mattiasson k = %g: w/L = %.6f (ref %.5f), u/L = %.6f (ref %.5f), rotation = %.6f\n", ref.k,
-                tip.x(), ref.w, 1.0 - tip.z(), ref.u, std::atan2(t.x(), t.z()));
+    std::printf(
+        "Mattiasson k = %g: w/L = %.6f (ref %.5f), u/L = %.6f (ref %.5f), rotation = %.6f\n", ref.k,
+        tip.x(), ref.w, 1.0 - tip.z(), ref.u, std::atan2(t.x(), t.z()));
     EXPECT_NEAR(tip.x(), ref.w, kFiveDigits);
     EXPECT_NEAR(1.0 - tip.z(), ref.u, kFiveDigits);
     if (ref.rotation > 0) {
@@ -243,7 +252,8 @@ TEST(BeamFeSolver, RigidlyRotatedProblemGivesTheSameStrainsAndTensions) {
     EXPECT_LT((sa[g].omega_B - sc[g].omega_B).norm(), kObjective * sa[g].omega_B.norm());
   }
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    EXPECT_NEAR(a.state.tensions_N[i], c.state.tensions_N[i], kObjective * std::abs(a.state.tensions_N[i]));
+    EXPECT_NEAR(a.state.tensions_N[i], c.state.tensions_N[i],
+                kObjective * std::abs(a.state.tensions_N[i]));
   }
   for (std::size_t k = 0; k < a.state.p_W_m.size(); ++k) {
     EXPECT_LT((b + Q * a.state.p_W_m[k] - c.state.p_W_m[k]).norm(), kObjective * m.length_m);
@@ -264,22 +274,25 @@ TEST(BeamFeSolver, TipErrorConvergesAtOrderTwoForLinearAndFourForQuadraticElemen
   std::printf("loaded manipulator, quadratic (reduced):\n%s",
               test_support::convergence_table(mesh_sizes(m.length_m, quad), e2).c_str());
   test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, lin), e1, kLinearOrder, kLinearBracket);
-  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder, kQuadraticBracket);
+  test_support::ExpectOrderInBracket(mesh_sizes(m.length_m, quad), e2, kQuadraticOrder,
+                                     kQuadraticBracket);
 }
 
 TEST(BeamFeSolver, FullIntegrationOfLinearElementsLocksOnASlenderRod) {
   // Thickness t = 1 mm, L = 1 m: EA/EI = 12/t^2. Tip load k = P L^2/EI = 1.
   const double t = 1e-3, E = 1e9;
-  rod::RodModel m = testing::stiffness_rod(1.0, E * t * t, 0.5 * E * t * t, E * t * t * t * t / 12.0,
-                                           E * t * t * t * t / 12.0, E * t * t * t * t / 12.0);
+  rod::RodModel m =
+      testing::stiffness_rod(1.0, E * t * t, 0.5 * E * t * t, E * t * t * t * t / 12.0,
+                             E * t * t * t * t / 12.0, E * t * t * t * t / 12.0);
   m.tip_force_W_N = {E * t * t * t * t / 12.0, 0.0, 0.0};
   const Solved ref = run(m, options(64, 2));
   ASSERT_TRUE(ref.summary.converged()) << ref.summary.message;
   const Vector3d tip = ref.state.p_W_m.back();
   const double reduced = tip_errors(m, 1, {8}, tip, Integration::kReduced)[0];
   const double full = tip_errors(m, 1, {8}, tip, Integration::kFull)[0];
-  std::printf("slender rod, 8 linear elements: tip error reduced %.3e, full %.3e (tip deflection %.4f)\n",
-              reduced, full, tip.x());
+  std::printf(
+      "slender rod, 8 linear elements: tip error reduced %.3e, full %.3e (tip deflection %.4f)\n",
+      reduced, full, tip.x());
   // Locking: shear/membrane stiffness 12 (h/t)^2 ~ 2e5 times the bending stiffness.
   constexpr double kMuchLarger = 100.0;
   EXPECT_GT(full, kMuchLarger * reduced);
@@ -393,10 +406,14 @@ TEST(BeamFeSolver, ConstantStrainGuessHasTheExactTcaTensionAndNodalRotations) {
   const Solved s = run(m, opt);
   ASSERT_TRUE(s.summary.converged()) << s.summary.message;
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    EXPECT_NEAR(guess.tensions_N[i], s.state.tensions_N[i], kExact * std::abs(s.state.tensions_N[i]));
+    EXPECT_NEAR(guess.tensions_N[i], s.state.tensions_N[i],
+                kExact * std::abs(s.state.tensions_N[i]));
   }
   for (std::size_t k = 0; k < s.state.s_m.size(); ++k) {
-    EXPECT_LT((guess.q_WB[k].toRotationMatrix() - s.state.q_WB[k].toRotationMatrix()).cwiseAbs().maxCoeff(), kExact);
+    EXPECT_LT((guess.q_WB[k].toRotationMatrix() - s.state.q_WB[k].toRotationMatrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              kExact);
   }
   // Helical routing has no constant-strain solution: no guess.
   testing::add_tension_string(m, "helix", 0.002, 0.0, 0.01, 1, 12.0);
@@ -455,9 +472,11 @@ TEST(BeamFeSolver, SweepPointWarmStartedAcrossLoadChangesEqualsAColdSolveOfTheSa
     State cold;
     const Summary c = solve(m, loads, opt, cold);
     ASSERT_TRUE(c.converged()) << c.message;
-    EXPECT_LT((sweep.p_W_m.back() - cold.p_W_m.back()).norm(), kSameSolution * m.length_m) << t_degC;
+    EXPECT_LT((sweep.p_W_m.back() - cold.p_W_m.back()).norm(), kSameSolution * m.length_m)
+        << t_degC;
     for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-      EXPECT_NEAR(sweep.tensions_N[i], cold.tensions_N[i], kSameSolution * std::abs(cold.tensions_N[i]));
+      EXPECT_NEAR(sweep.tensions_N[i], cold.tensions_N[i],
+                  kSameSolution * std::abs(cold.tensions_N[i]));
     }
     if (t_degC > 40.0) {
       EXPECT_EQ(warm.load_steps, 1) << "a warm point is one Newton solve at full load";
@@ -517,9 +536,11 @@ TEST(BeamFeSolver, CommonResidualOfAConvergedSolveIsWithinItsTolerance) {
   const Options opt = options(8, 2);
   const Solved s = run(m, opt);
   ASSERT_TRUE(s.summary.converged()) << s.summary.message;
-  EXPECT_EQ(s.summary.characteristic_force_N, rod::characteristic_force_N(m, rod::Loads::from_model(m)));
+  EXPECT_EQ(s.summary.characteristic_force_N,
+            rod::characteristic_force_N(m, rod::Loads::from_model(m)));
   ASSERT_TRUE(s.summary.equilibrium_residual.has_value());
-  // Every row is within tolerance_abs + tolerance_rel scale + floor; over F_c that is far below 1e-6.
+  // Every row is within tolerance_abs + tolerance_rel scale + floor; over F_c that is far below
+  // 1e-6.
   EXPECT_LT(*s.summary.equilibrium_residual, 1e-6);
   EXPECT_LE(*s.summary.equilibrium_residual * s.summary.characteristic_force_N,
             s.summary.residual_inf / std::min(1.0, m.length_m));

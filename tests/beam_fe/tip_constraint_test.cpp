@@ -21,7 +21,6 @@ using testing::Solved;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-
 /// Stress-free tip of a model (exact arc of omega* from the clamp).
 Vector3d reference_tip(const rod::RodModel& m) {
   const Vector3d phi = m.length_m * m.reference_curvature_B_1_m;
@@ -30,7 +29,8 @@ Vector3d reference_tip(const rod::RodModel& m) {
 
 /// The paper's circular manipulator at 90 degC (heated extension TCA: pushes, bends toward
 /// -x; its free tip is near (-24.0, 0, 30.2) mm) with its tip held at `position_m`.
-rod::RodModel held_manipulator(const Vector3d& position_m, const std::optional<Vector3d>& normal = {}) {
+rod::RodModel held_manipulator(const Vector3d& position_m,
+                               const std::optional<Vector3d>& normal = {}) {
   rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
   rod::TipConstraint c;
   c.position_W_m = position_m;
@@ -52,8 +52,8 @@ const Vector3d kHeldPoint_m(-0.022, 0.001, 0.031);
 /// Clamp reaction (force and moment on the rod, world frame): the first element's internal
 /// nodal forces at the base node (they include the strings' base terminations) minus the
 /// share of the weight the clamp takes directly (int N_0 w ds = w h/6 for a quadratic element).
-void clamp_reaction(const rod::RodModel& m, const Discretization& disc, const State& st, Vector3d& force,
-                    Vector3d& moment) {
+void clamp_reaction(const rod::RodModel& m, const Discretization& disc, const State& st,
+                    Vector3d& force, Vector3d& moment) {
   const ElementEvaluation ev = disc.element(st, 0, st.tensions_N);
   const double h = m.length_m / disc.element_count();
   force = ev.residual.head<3>() - h / 6.0 * m.weight_per_length_W_N_m();
@@ -82,9 +82,11 @@ void expect_global_equilibrium(const rod::RodModel& m, const Options& opt, const
   const double scale = std::max({Fw.norm(), Fh.norm(), F0.norm()});
   // [conventions.md] global equilibrium: clamp, weight, tip wrench and holder balance.
   const Vector3d force = F0 + Fw + m.tip_force_W_N + Fh;
-  const Vector3d moment = M0 + p0.cross(F0) + Mw + pL.cross(m.tip_force_W_N + Fh) + m.tip_moment_W_Nm;
-  std::printf("clamp force (%.6e, %.6e, %.6e) N, holder (%.6e, %.6e, %.6e) N, imbalance %.2e N, %.2e N m\n",
-              F0.x(), F0.y(), F0.z(), Fh.x(), Fh.y(), Fh.z(), force.norm(), moment.norm());
+  const Vector3d moment =
+      M0 + p0.cross(F0) + Mw + pL.cross(m.tip_force_W_N + Fh) + m.tip_moment_W_Nm;
+  std::printf(
+      "clamp force (%.6e, %.6e, %.6e) N, holder (%.6e, %.6e, %.6e) N, imbalance %.2e N, %.2e N m\n",
+      F0.x(), F0.y(), F0.z(), Fh.x(), Fh.y(), Fh.z(), force.norm(), moment.norm());
   EXPECT_LT(force.norm(), kBalance * scale);
   EXPECT_LT(moment.norm(), kBalance * scale * m.length_m);
 }
@@ -117,8 +119,10 @@ TEST(BeamFeTipConstraint, ReactionAppliedAsATipForceReproducesTheHeldPosition) {
   // Both solves converged to ~1e-12 N on a compliance ~3 m/N (EcoFlex cantilever L^3/3EI):
   // positions agree to ~1e-11 m.
   constexpr double kSolverTolerance = 1e-9;
-  EXPECT_LT((b.state.p_W_m.back() - held.tip_constraint->position_W_m).norm(), kSolverTolerance * held.length_m);
-  EXPECT_NEAR(b.state.tensions_N[0], a.state.tensions_N[0], kSolverTolerance * std::abs(a.state.tensions_N[0]));
+  EXPECT_LT((b.state.p_W_m.back() - held.tip_constraint->position_W_m).norm(),
+            kSolverTolerance * held.length_m);
+  EXPECT_NEAR(b.state.tensions_N[0], a.state.tensions_N[0],
+              kSolverTolerance * std::abs(a.state.tensions_N[0]));
   EXPECT_FALSE(make_result(free, opt, b.state, b.summary).tip_reaction_force_W_N.has_value());
 }
 
@@ -134,10 +138,11 @@ TEST(BeamFeTipConstraint, NormalOnlyContactPushesAlongTheNormalAndLeavesTheTange
   const Solved s = run(m, opt);
   ASSERT_TRUE(s.summary.converged()) << s.summary.message;
   const Vector3d F = s.state.tip_reaction_W_N;
-  EXPECT_GT(F.dot(n), 0.0);                          // the wall pushes
-  EXPECT_LT(F.cross(n).norm(), 1e-14 * F.norm());    // along its normal (round-off)
+  EXPECT_GT(F.dot(n), 0.0);                        // the wall pushes
+  EXPECT_LT(F.cross(n).norm(), 1e-14 * F.norm());  // along its normal (round-off)
   constexpr double kHeld = 1e-10;
-  EXPECT_NEAR(n.dot(s.state.p_W_m.back() - m.tip_constraint->position_W_m), 0.0, kHeld * m.length_m);
+  EXPECT_NEAR(n.dot(s.state.p_W_m.back() - m.tip_constraint->position_W_m), 0.0,
+              kHeld * m.length_m);
   // The tangential position is not held: it differs from the wall point by millimetres.
   const Vector3d slip = s.state.p_W_m.back() - m.tip_constraint->position_W_m;
   EXPECT_GT((slip - n.dot(slip) * n).norm(), 1e-4);
@@ -181,7 +186,8 @@ TEST(BeamFeTipConstraint, ReactionForceConvergesAtOrderFourWithQuadraticElements
     h.push_back(m.length_m / n);
     e.push_back((s.state.tip_reaction_W_N - ref.state.tip_reaction_W_N).norm());
   }
-  std::printf("pinned manipulator, reaction force, quadratic:\n%s", test_support::convergence_table(h, e).c_str());
+  std::printf("pinned manipulator, reaction force, quadratic:\n%s",
+              test_support::convergence_table(h, e).c_str());
   // The same bracket as the tip-position gates of solver_test.cpp.
   constexpr double kQuadraticOrder = 4.0, kQuadraticBracket = 0.3;
   test_support::ExpectOrderInBracket(h, e, kQuadraticOrder, kQuadraticBracket);

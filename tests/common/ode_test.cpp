@@ -146,7 +146,9 @@ TEST(OdeRk4, NonZeroStartAndNonAutonomousRhsUseTheRightAbscissae) {
   for (int steps : {4, 8, 16, 32}) {
     Integrator integrator(1, rk4(steps));
     Eigen::VectorXd y = Eigen::VectorXd::Constant(1, std::sin(1.0));
-    const auto f = [](double s, const Eigen::VectorXd&, Eigen::VectorXd& dy) { dy[0] = std::cos(s); };
+    const auto f = [](double s, const Eigen::VectorXd&, Eigen::VectorXd& dy) {
+      dy[0] = std::cos(s);
+    };
     ASSERT_EQ(integrator.integrate(f, 1.0, 3.0, y).status, Status::kSuccess);
     h.push_back(2.0 / steps);
     err.push_back(std::abs(y[0] - std::sin(3.0)));
@@ -357,7 +359,9 @@ TEST(OdeObserver, Rk4WithZeroIntervalsSeesEveryStepNode) {
   Integrator integrator(1, rk4(8));
   std::vector<Observation> seen;
   Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0);
-  integrator.integrate(decay, 0.5, 2.5, y, [&](double s, const Eigen::VectorXd& v) { seen.push_back({s, v}); });
+  integrator.integrate(decay, 0.5, 2.5, y, [&](double s, const Eigen::VectorXd& v) {
+    seen.push_back({s, v});
+  });
   ASSERT_EQ(seen.size(), 9u);
   for (int k = 0; k <= 8; ++k) EXPECT_DOUBLE_EQ(seen[k].s, 0.5 + 0.25 * k);
   EXPECT_EQ(seen.front().y[0], 1.0);
@@ -369,7 +373,9 @@ TEST(OdeObserver, Rk4WithIntervalsSeesEveryKthNodeAndRejectsNonDivisors) {
   Integrator integrator(1, rk4(12, 4));
   std::vector<Observation> seen;
   Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0);
-  integrator.integrate(decay, 0.0, 1.0, y, [&](double s, const Eigen::VectorXd& v) { seen.push_back({s, v}); });
+  integrator.integrate(decay, 0.0, 1.0, y, [&](double s, const Eigen::VectorXd& v) {
+    seen.push_back({s, v});
+  });
   ASSERT_EQ(seen.size(), 5u);
   for (int k = 0; k <= 4; ++k) {
     EXPECT_NEAR(seen[k].s, 0.25 * k, 1e-15);
@@ -388,7 +394,9 @@ TEST(OdeObserver, CvodeWithZeroIntervalsSeesOnlyEndpoints) {
   Integrator integrator(2, cvode(1e-9));
   std::vector<Observation> seen;
   Eigen::VectorXd y = oscillator_exact(0.0);
-  integrator.integrate(oscillator, 0.0, 3.0, y, [&](double s, const Eigen::VectorXd& v) { seen.push_back({s, v}); });
+  integrator.integrate(oscillator, 0.0, 3.0, y, [&](double s, const Eigen::VectorXd& v) {
+    seen.push_back({s, v});
+  });
   ASSERT_EQ(seen.size(), 2u);
   EXPECT_EQ(seen[0].s, 0.0);
   EXPECT_EQ(seen[0].y, oscillator_exact(0.0));
@@ -400,17 +408,22 @@ TEST(OdeObserver, CvodeWithIntervalsSeesEquallySpacedAccuratePoints) {
   Integrator integrator(2, cvode(1e-10, CvodeScheme::kAdamsFixedPoint, 5));
   std::vector<Observation> seen;
   Eigen::VectorXd y = oscillator_exact(0.0);
-  integrator.integrate(oscillator, 0.0, 2.0, y, [&](double s, const Eigen::VectorXd& v) { seen.push_back({s, v}); });
+  integrator.integrate(oscillator, 0.0, 2.0, y, [&](double s, const Eigen::VectorXd& v) {
+    seen.push_back({s, v});
+  });
   ASSERT_EQ(seen.size(), 6u);
   for (int k = 0; k <= 5; ++k) {
     EXPECT_NEAR(seen[k].s, 0.4 * k, 1e-15);
-    EXPECT_LT((seen[k].y - oscillator_exact(seen[k].s)).norm(), kCvodeGlobalErrorFactor * 1e-10) << k;
+    EXPECT_LT((seen[k].y - oscillator_exact(seen[k].s)).norm(), kCvodeGlobalErrorFactor * 1e-10)
+        << k;
   }
   EXPECT_EQ(seen.back().s, 2.0);
 }
 
 // y' = y^2, y(0) = 1: y = 1/(1 - s) blows up at s = 1 < s1 = 2.
-void blow_up(double /*s*/, const Eigen::VectorXd& y, Eigen::VectorXd& dy) { dy = y.array().square(); }
+void blow_up(double /*s*/, const Eigen::VectorXd& y, Eigen::VectorXd& dy) {
+  dy = y.array().square();
+}
 
 TEST(OdeFailure, Rk4BlowUpIsReportedAsFailureNotNan) {
   Integrator integrator(1, rk4(1000));
@@ -462,7 +475,7 @@ TEST(OdeRk4, StepsDoNotAllocate) {
   constexpr int kDim = 12;
   Integrator integrator(kDim, rk4(1000));
   Eigen::VectorXd y = Eigen::VectorXd::Ones(kDim);
-  const RhsFunction f = decay;  // built before counting
+  const RhsFunction f = decay;           // built before counting
   integrator.integrate(f, 0.0, 1.0, y);  // warm-up
   y.setOnes();
   const long before = g_allocations.load();

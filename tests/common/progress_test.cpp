@@ -45,7 +45,8 @@ TEST(ProgressReporter, AlwaysWritesTheLastPointAndPrintsShortLoopsWhole) {
 }
 
 TEST(ProgressReporter, WritesALineWheneverTheIntervalHasPassed) {
-  const std::string out = report(1000, ProgressOptions{0.1, 0.0}, false);  // interval 0: every update
+  const std::string out =
+      report(1000, ProgressOptions{0.1, 0.0}, false);  // interval 0: every update
   EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1000);
 }
 

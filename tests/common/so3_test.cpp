@@ -33,9 +33,9 @@ constexpr double kFdJacobianTol = 1e-9;
 std::vector<Vector3d> test_points() {
   std::vector<Vector3d> points;
   const Vector3d axis = Vector3d(0.3, -0.5, 0.8).normalized();
-  for (double angle : {0.0, 1e-9, 1e-5, kSmallAngleThreshold * (1.0 - 1e-9),
-                       kSmallAngleThreshold * (1.0 + 1e-9), 1e-3, 0.0999, 0.1001, 0.5, 2.0, kPi - 1e-4,
-                       kPi - 1e-8})
+  for (double angle :
+       {0.0, 1e-9, 1e-5, kSmallAngleThreshold * (1.0 - 1e-9), kSmallAngleThreshold * (1.0 + 1e-9),
+        1e-3, 0.0999, 0.1001, 0.5, 2.0, kPi - 1e-4, kPi - 1e-8})
     points.push_back(angle * axis);
   // Coordinate axes near pi exercise every pivot of the matrix-to-quaternion step.
   for (int k = 0; k < 3; ++k) points.push_back((kPi - 1e-8) * Vector3d::Unit(k));
@@ -194,7 +194,8 @@ TEST(So3, JacobiansAreContinuousAcrossTheSmallAngleThresholds) {
     EXPECT_LE((right_jacobian(below) - right_jacobian(above)).norm(), kRoundOffTol) << threshold;
     EXPECT_LE((right_jacobian_inverse(below) - right_jacobian_inverse(above)).norm(), kRoundOffTol)
         << threshold;
-    EXPECT_LE((exp_quaternion(below).coeffs() - exp_quaternion(above).coeffs()).norm(), kRoundOffTol)
+    EXPECT_LE((exp_quaternion(below).coeffs() - exp_quaternion(above).coeffs()).norm(),
+              kRoundOffTol)
         << threshold;
   }
 }

@@ -39,7 +39,9 @@ TEST(SupportFiniteDifference, ScalarDerivativeMatchesAnalytic) {
 }
 
 TEST(SupportFiniteDifference, GradientAndJacobianMatchAnalytic) {
-  const auto f = [](const Eigen::VectorXd& v) { return std::exp(v[0]) * std::sin(v[1]) + v[2] * v[2]; };
+  const auto f = [](const Eigen::VectorXd& v) {
+    return std::exp(v[0]) * std::sin(v[1]) + v[2] * v[2];
+  };
   Eigen::VectorXd x(3);
   x << 0.3, -1.1, 2.0;
   Eigen::VectorXd g_exact(3);
@@ -99,7 +101,8 @@ TEST(SupportConvergence, FailureMessagePrintsTheWholeTable) {
   const ::testing::AssertionResult r = OrderInBracket(h, e, 4.0, 0.15);
   ASSERT_FALSE(r);
   const std::string msg = r.message();
-  for (const char* piece : {"level", "error", "order", "4.00000e-01", "1.00000e-02", "2.0000", "[3.85, 4.15]"})
+  for (const char* piece :
+       {"level", "error", "order", "4.00000e-01", "1.00000e-02", "2.0000", "[3.85, 4.15]"})
     EXPECT_NE(msg.find(piece), std::string::npos) << "missing '" << piece << "' in:\n" << msg;
   EXPECT_NONFATAL_FAILURE(ExpectOrderInBracket(h, e, 4.0, 0.15), "2.0000");
 }
@@ -128,7 +131,9 @@ TEST(SupportElliptic, CompleteIntegralsAtParameterOneHalf) {
 constexpr double kTableRounding = 5e-6;
 
 TEST(SupportElliptic, CantileverElasticaReproducesMattiassonsTable) {
-  struct Row { double k, w, u, rotation; };
+  struct Row {
+    double k, w, u, rotation;
+  };
   for (const Row& row : {Row{1, 0.30172, 0.05643, 0.46135}, Row{2, 0.49346, 0.16064, NAN},
                          Row{5, 0.71379, 0.38763, NAN}, Row{10, 0.81061, 0.55500, 1.43029}}) {
     const ElasticaTip t = cantilever_elastica_tip(row.k);

@@ -125,9 +125,10 @@ TEST(ClosedCoils, SweepOpensTheCoilsAtThePredictedOnsetWithAContinuousKink) {
   EXPECT_LE(across, after);
   // Semismooth Newton: warm steps through the kink stay cheap.
   EXPECT_LE(max_iterations, 8);
-  std::printf("[onset sweep] predicted onset %.6f degC; tip steps before %.2e, across %.2e, after "
-              "%.2e m; max Newton iterations %d\n",
-              units::K_to_degC(*onset_K), before, across, after, max_iterations);
+  std::printf(
+      "[onset sweep] predicted onset %.6f degC; tip steps before %.2e, across %.2e, after "
+      "%.2e m; max Newton iterations %d\n",
+      units::K_to_degC(*onset_K), before, across, after, max_iterations);
 }
 
 TEST(ClosedCoils, InverseSolveStartingWithClosedCoilsReachesATargetAboveTheOnset) {

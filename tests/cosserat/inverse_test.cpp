@@ -134,8 +134,10 @@ void check_derivatives(const rod::RodModel& m, const std::vector<int>& vars) {
   bvp_differences(solver, m, a, sol, vars, Jb, Cb);
   TipDerivatives ds, dc, df;
   ASSERT_TRUE(tip_derivatives(solver, m, a, sol, vars, TipDerivativeMethod::kSensitivity, ds));
-  ASSERT_TRUE(tip_derivatives(solver, m, a, sol, vars, TipDerivativeMethod::kCentralDifference, dc));
-  ASSERT_TRUE(tip_derivatives(solver, m, a, sol, vars, TipDerivativeMethod::kForwardDifference, df));
+  ASSERT_TRUE(
+      tip_derivatives(solver, m, a, sol, vars, TipDerivativeMethod::kCentralDifference, dc));
+  ASSERT_TRUE(
+      tip_derivatives(solver, m, a, sol, vars, TipDerivativeMethod::kForwardDifference, df));
   EXPECT_LE((ds.J - Jb).norm(), kAgainstBvpRelative * Jb.norm()) << ds.J << "\n\n" << Jb;
   EXPECT_LE((ds.C - Cb).norm(), kAgainstBvpRelative * Cb.norm()) << ds.C << "\n\n" << Cb;
   EXPECT_LE((dc.J - Jb).norm(), kAgainstBvpRelative * Jb.norm());
@@ -147,9 +149,10 @@ void check_derivatives(const rod::RodModel& m, const std::vector<int>& vars) {
   // The sensitivity variant needs one augmented IVP (plus two per tension drive); the
   // literal Eqs. (41)-(42) one IVP per unknown, actuation variable and wrench component.
   EXPECT_LT(ds.ivp_count, df.ivp_count);
-  std::printf("[J/C] |J| %.3e  rel. err. sens %.2e central %.2e forward %.2e | |C| %.3e  sens %.2e\n",
-              Jb.norm(), (ds.J - Jb).norm() / Jb.norm(), (dc.J - Jb).norm() / Jb.norm(),
-              (df.J - Jb).norm() / Jb.norm(), Cb.norm(), (ds.C - Cb).norm() / Cb.norm());
+  std::printf(
+      "[J/C] |J| %.3e  rel. err. sens %.2e central %.2e forward %.2e | |C| %.3e  sens %.2e\n",
+      Jb.norm(), (ds.J - Jb).norm() / Jb.norm(), (dc.J - Jb).norm() / Jb.norm(),
+      (df.J - Jb).norm() / Jb.norm(), Cb.norm(), (ds.C - Cb).norm() / Cb.norm());
 }
 
 TEST(TipDerivatives, JacobianAndComplianceOfTemperaturesMatchBvpDifferences) {
@@ -378,7 +381,8 @@ TEST(InverseRejections, BadInputsNameTheFlagValueAndRule) {
   const rod::RodModel m = tca_rod({0.0, 90.0}, {25.0, 25.0});
   InverseOptions io;
   io.max_temperature_K = degC_to_K(20.0);  // below ambient
-  expect_input_error([&] { inverse_from_rest(m, Vector3d(0, 0, 0.04), io); }, "max_temperature_degC");
+  expect_input_error([&] { inverse_from_rest(m, Vector3d(0, 0, 0.04), io); },
+                     "max_temperature_degC");
 }
 
 TEST(InverseRejections, SegmentedTcaIsRefusedNotReducedToItsFirstSegment) {

@@ -13,11 +13,11 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
-#include "rod/closed_form.hpp"
 #include "cosserat/models.hpp"
-#include "support/finite_difference.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/closed_form.hpp"
 #include "support/convergence.hpp"
+#include "support/finite_difference.hpp"
 
 namespace tcasim::cosserat {
 namespace {
@@ -157,7 +157,8 @@ rod::RodModel varying_strain_rod(bool with_tca) {
   h.rest_length_m = m.length_m * std::sqrt(1.0 + w * w);
   m.actuators.push_back(h);
   if (with_tca) {
-    testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.003, 0.001, units::degC_to_K(90.0));
+    testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.003, 0.001,
+                            units::degC_to_K(90.0));
   }
   return m;
 }
@@ -196,7 +197,8 @@ TEST(LieGroupShooting, ConvergesToTheSameSolutionAsRk4) {
 TEST(LieGroupShooting, SensitivityJacobianMatchesCentralDifferences) {
   const rod::RodModel m = varying_strain_rod(true);
   Eigen::VectorXd x(7);
-  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;  // nu - nu*: away from equilibrium, bent, TCA pushing
+  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0,
+      -0.002;  // nu - nu*: away from equilibrium, bent, TCA pushing
   auto jacobian_by = [&](JacobianMethod method) {
     Options o = lie_options(8);  // few, large steps: the group update's derivative matters
     o.jacobian = method;

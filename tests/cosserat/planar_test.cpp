@@ -36,7 +36,8 @@ planar::Rod kernel_rod(int n, const std::vector<int>& directions) {
     rod.cT.push_back(0.05 * (1.0 + i) * (i % 3 == 2 ? -0.5 : 1.0));
     rod.direction_of.push_back(-1);
   }
-  for (int k = 0; k < static_cast<int>(directions.size()); ++k) rod.direction_of[directions[k]] = 3 + k;
+  for (int k = 0; k < static_cast<int>(directions.size()); ++k)
+    rod.direction_of[directions[k]] = 3 + k;
   rod.f_x = 0.3;
   rod.f_z = -0.7;
   return rod;
@@ -86,7 +87,9 @@ void expect_sensitivities_match_differences(int n_act, const std::vector<int>& d
   EXPECT_LE((dY.head(dim) - planar_rhs(rod, y)).norm(), 1e-15 * planar_rhs(rod, y).norm());
   for (int j = 0; j < n_dir; ++j) {
     const VectorXd Yj = Y.segment(dim * (j + 1), dim);
-    auto along = [&](const VectorXd& t) { return planar_rhs(moved_tensions(rod, j, t[0]), y + t[0] * Yj); };
+    auto along = [&](const VectorXd& t) {
+      return planar_rhs(moved_tensions(rod, j, t[0]), y + t[0] * Yj);
+    };
     const Eigen::MatrixXd fd = test_support::jacobian(along, VectorXd::Zero(1));
     const VectorXd exact = dY.segment(dim * (j + 1), dim);
     EXPECT_LE((exact - fd.col(0)).norm(), kCentralDifferenceError * fd.col(0).norm())
@@ -96,8 +99,8 @@ void expect_sensitivities_match_differences(int n_act, const std::vector<int>& d
 }
 
 TEST(PlanarKernel, OneStringSensitivitiesAreTheDerivativeOfTheRhs) {
-  expect_sensitivities_match_differences(1, {0});   // Sherman-Morrison, a TCA-like unknown
-  expect_sensitivities_match_differences(1, {});    // a known tension
+  expect_sensitivities_match_differences(1, {0});  // Sherman-Morrison, a TCA-like unknown
+  expect_sensitivities_match_differences(1, {});   // a known tension
 }
 
 TEST(PlanarKernel, SeveralStringSensitivitiesAreTheDerivativeOfTheRhs) {
@@ -119,7 +122,8 @@ TEST(PlanarKernel, TipWrenchSensitivitiesAreItsDerivative) {
       auto along = [&](const VectorXd& t) {
         const VectorXd yt = Y.head(dim) + t[0] * Yj;
         Vector3d w;
-        planar::tip_wrench(moved_tensions(rod, j, t[0]), kappa_star, F_x, F_z, M_y, yt.data(), w.data());
+        planar::tip_wrench(moved_tensions(rod, j, t[0]), kappa_star, F_x, F_z, M_y, yt.data(),
+                           w.data());
         return VectorXd(w);
       };
       const Eigen::MatrixXd fd = test_support::jacobian(along, VectorXd::Zero(1));
@@ -189,8 +193,9 @@ void expect_same_solution(const Solved& planar_solve, const Solved& full, const 
   EXPECT_EQ(planar_solve.summary.ivp_count, full.summary.ivp_count);
   // The global equilibrium check (it measures the integrator's truncation error) is the same
   // check: its force and moment agree to round-off of the rod's weight W and W L.
-    const Vector3d df = planar_solve.summary.force_imbalance_W_N - full.summary.force_imbalance_W_N;
-  const Vector3d dm = planar_solve.summary.moment_imbalance_W_Nm - full.summary.moment_imbalance_W_Nm;
+  const Vector3d df = planar_solve.summary.force_imbalance_W_N - full.summary.force_imbalance_W_N;
+  const Vector3d dm =
+      planar_solve.summary.moment_imbalance_W_Nm - full.summary.moment_imbalance_W_Nm;
   EXPECT_LE(df.norm(), kRoundOffRelative * weight_scale_N);
   EXPECT_LE(dm.norm(), kRoundOffRelative * weight_scale_N * length_m);
 }
@@ -244,8 +249,8 @@ rod::RodModel three_string_rod() {
 TEST(PlanarReduction, SeveralStringsRotatedBaseAndTipLoadsMatchThe3dSolve) {
   const rod::RodModel m = three_string_rod();
   Actuation act = Actuation::from_model(m);
-  act.tip_force_W_N = {0.0, 1e-3, -2e-3};     // in the world y-z plane = body x-z plane
-  act.tip_moment_W_Nm = {-1e-5, 0.0, 0.0};    // along world -x = body y
+  act.tip_force_W_N = {0.0, 1e-3, -2e-3};   // in the world y-z plane = body x-z plane
+  act.tip_moment_W_Nm = {-1e-5, 0.0, 0.0};  // along world -x = body y
   for (const ode::Method method : {ode::Method::kRk4, ode::Method::kRk8}) {
     const int steps = method == ode::Method::kRk4 ? 32 : 6;
     const int coarse = method == ode::Method::kRk4 ? 4 : 2;

@@ -7,8 +7,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <unsupported/Eigen/MatrixFunctions>
 #include <initializer_list>
+#include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
 #include "common/lie_series.hpp"
@@ -16,8 +16,8 @@
 #include "common/units.hpp"
 #include "cosserat/models.hpp"
 #include "rod/closed_form.hpp"
-#include "support/finite_difference.hpp"
 #include "support/convergence.hpp"
+#include "support/finite_difference.hpp"
 
 namespace tcasim::cosserat {
 namespace {
@@ -41,7 +41,8 @@ Eigen::Matrix4d constant_strain_tip(const Vector3d& nu, const Vector3d& omega, d
 bool result_is_finite(const rod::Result& r) {
   bool ok = r.residual.has_value() && std::isfinite(*r.residual) && std::isfinite(r.wall_time_s) &&
             r.tip_position_W_m.allFinite() && r.tip_R_WB.allFinite();
-  for (const auto& a : r.actuators) ok = ok && std::isfinite(a.tension_N) && std::isfinite(a.elongation_m);
+  for (const auto& a : r.actuators)
+    ok = ok && std::isfinite(a.tension_N) && std::isfinite(a.elongation_m);
   for (const auto& p : r.centerline_p_W_m) ok = ok && p.allFinite();
   for (const auto& R : r.centerline_R_WB) ok = ok && R.allFinite();
   if (r.bending_radius_m) ok = ok && std::isfinite(*r.bending_radius_m);
@@ -88,7 +89,8 @@ struct ClosedForm {
 ClosedForm closed_form(const rod::RodModel& m, const std::vector<double>& tensions) {
   // docs/conventions.md "Closed form".
   std::vector<double> cT;
-  for (std::size_t i = 0; i < m.actuators.size(); ++i) cT.push_back(m.actuators[i].count * tensions[i]);
+  for (std::size_t i = 0; i < m.actuators.size(); ++i)
+    cT.push_back(m.actuators[i].count * tensions[i]);
   const rod::ConstantStrains s = rod::closed_form_strains(m, cT);
   return {Vector3d::UnitZ() + s.e, s.omega, rod::closed_form_elongations_m(m, cT)};
 }
@@ -119,7 +121,8 @@ void expect_matches_closed_form(const rod::RodModel& m, const Solution& sol, con
     EXPECT_LE(std::abs(res.actuators[i].elongation_m - cf.delta[i]),
               kClosedFormRelativeError * std::abs(cf.delta[i]))
         << "actuator " << i << " delta " << res.actuators[i].elongation_m << " vs " << cf.delta[i];
-    EXPECT_NEAR(res.actuators[i].tension_N, tensions[i], kClosedFormRelativeError * std::abs(tensions[i]));
+    EXPECT_NEAR(res.actuators[i].tension_N, tensions[i],
+                kClosedFormRelativeError * std::abs(tensions[i]));
   }
   std::printf("[closed form] nu err %.2e, omega err %.2e (rel), tip err %.2e L\n",
               (nu0 - cf.nu).norm() / cf.nu.norm(), (om0 - cf.omega).norm() / cf.omega.norm(),
@@ -272,7 +275,8 @@ TEST_P(Mattiasson, TipDeflectionMatchesTheElasticaTable) {
   const double w = res.tip_position_W_m.x() / L, u = 1.0 - res.tip_position_W_m.z() / L;
   const Vector3d t = res.tip_R_WB.col(2);
   const double rot = std::atan2(t.x(), t.z());
-  std::printf("[Mattiasson k=%g] w/L %.6f (%.5f)  u/L %.6f (%.5f)  rot %.6f\n", c.k, w, c.w, u, c.u, rot);
+  std::printf("[Mattiasson k=%g] w/L %.6f (%.5f)  u/L %.6f (%.5f)  rot %.6f\n", c.k, w, c.w, u, c.u,
+              rot);
   EXPECT_NEAR(w, c.w, kMattiassonTolerance);
   EXPECT_NEAR(u, c.u, kMattiassonTolerance);
   if (std::isfinite(c.rotation)) {
@@ -280,12 +284,11 @@ TEST_P(Mattiasson, TipDeflectionMatchesTheElasticaTable) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Table, Mattiasson,
-    ::testing::Values(MattiassonCase{1, 0.30172, 0.05643, 0.46135},
-                      MattiassonCase{2, 0.49346, 0.16064, std::nan("")},
-                      MattiassonCase{5, 0.71379, 0.38763, std::nan("")},
-                      MattiassonCase{10, 0.81061, 0.55500, 1.43029}));
+INSTANTIATE_TEST_SUITE_P(Table, Mattiasson,
+                         ::testing::Values(MattiassonCase{1, 0.30172, 0.05643, 0.46135},
+                                           MattiassonCase{2, 0.49346, 0.16064, std::nan("")},
+                                           MattiassonCase{5, 0.71379, 0.38763, std::nan("")},
+                                           MattiassonCase{10, 0.81061, 0.55500, 1.43029}));
 
 // --------------------------------------------------------------------------------------
 // Physical signs (docs/conventions.md).
@@ -304,7 +307,8 @@ TEST(ShootingSigns, PositiveTensionAtPlusXBendsTowardPlusX) {
 
 TEST(ShootingSigns, HeatedExtensionTcaAtPlusXBendsAwayTowardMinusX) {
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
-  testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0, units::degC_to_K(120.0));
+  testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0,
+                          units::degC_to_K(120.0));
   ShootingSolver solver(m, rk4_options(50, 1e-10));
   const Actuation act = Actuation::from_model(m);
   Solution sol;
@@ -450,13 +454,15 @@ TEST(ShootingConvergence, CvodeTipErrorScalesWithItsTolerance) {
 
 rod::RodModel jacobian_test_rod() {
   rod::RodModel m = general_3d_rod();
-  testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.003, 0.001, units::degC_to_K(90.0));
+  testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.003, 0.001,
+                          units::degC_to_K(90.0));
   return m;
 }
 
 Eigen::VectorXd jacobian_test_point() {
   Eigen::VectorXd x(7);
-  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;  // nu - nu*: away from equilibrium, bent, TCA pushing
+  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0,
+      -0.002;  // nu - nu*: away from equilibrium, bent, TCA pushing
   return x;
 }
 
@@ -474,7 +480,8 @@ TEST(ShootingJacobian, SensitivityJacobianMatchesCentralDifferencesOfTheResidual
   const Eigen::MatrixXd Js = jacobian_by(JacobianMethod::kSensitivity);
   const Eigen::MatrixXd Jc = jacobian_by(JacobianMethod::kCentralDifference);
   const double worst = test_support::worst_column_relative_difference(Js, Jc);
-  std::printf("[jacobian] sensitivity vs central differences: %.2e (worst column, relative)\n", worst);
+  std::printf("[jacobian] sensitivity vs central differences: %.2e (worst column, relative)\n",
+              worst);
   /// Central differences with h = eps^(1/3) max(|x|, typical) err by ~1e-10 relative
   /// (truncation ~h^2 times the third derivative, round-off ~eps |r| / h).
   constexpr double kCentralDifferenceError = 1e-7;
@@ -522,7 +529,8 @@ TEST(ShootingJacobian, AllJacobianMethodsConvergeToTheSameSolution) {
     Solution sol;
     const Summary s = solver.solve(act, sol);
     ASSERT_TRUE(s.converged()) << s.message;
-    std::printf("[method %d] iterations %d, IVPs %d\n", static_cast<int>(method), s.iterations, s.ivp_count);
+    std::printf("[method %d] iterations %d, IVPs %d\n", static_cast<int>(method), s.iterations,
+                s.ivp_count);
     xs.push_back(sol.unknowns);
   }
   /// The tolerance 1e-10 on the scaled residual fixes x to ~1e-10 relative (times the
@@ -763,7 +771,8 @@ TEST(ShootingSegments, EqualSegmentTemperaturesReproduceTheUniformTca) {
 TEST(ShootingSegments, MixedSegmentTemperaturesGiveATensionBetweenTheUniformOnes) {
   const double cold = manipulator_tension({{1.0, units::degC_to_K(60.0)}});
   const double hot = manipulator_tension({{1.0, units::degC_to_K(120.0)}});
-  const double mixed = manipulator_tension({{0.5, units::degC_to_K(60.0)}, {0.5, units::degC_to_K(120.0)}});
+  const double mixed =
+      manipulator_tension({{0.5, units::degC_to_K(60.0)}, {0.5, units::degC_to_K(120.0)}});
   std::printf("[segments] 60 degC %.5e N, 120 degC %.5e N, half/half %.5e N\n", cold, hot, mixed);
   EXPECT_LT(mixed, cold);
   EXPECT_GT(mixed, hot);
@@ -798,7 +807,8 @@ TEST(ShootingSummary, CommonResidualIsTheScaledOneForTheModelsLoadsAndRescaledFo
   ASSERT_TRUE(t.converged()) << t.message;
   EXPECT_EQ(t.characteristic_force_N, rod::characteristic_force_N(m, loads));
   ASSERT_TRUE(t.equilibrium_residual.has_value());
-  EXPECT_NEAR(*t.equilibrium_residual, t.residual * solver.characteristic_force_N() / t.characteristic_force_N,
+  EXPECT_NEAR(*t.equilibrium_residual,
+              t.residual * solver.characteristic_force_N() / t.characteristic_force_N,
               1e-15 * t.residual);
 }
 

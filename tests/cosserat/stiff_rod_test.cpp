@@ -81,7 +81,8 @@ struct Reference {
 };
 
 /// The reference tip: the inextensible closed form where extension is negligible (its error
-/// is the extensible correction, ~2 k / ratio L), else RK8 at kReferenceSteps (checked against kReferenceSteps / 2).
+/// is the extensible correction, ~2 k / ratio L), else RK8 at kReferenceSteps (checked against
+/// kReferenceSteps / 2).
 Reference reference_tip(double ratio, double k) {
   const double L = 1.0;
   const double correction = 2.0 * k / ratio;
@@ -90,7 +91,8 @@ Reference reference_tip(double ratio, double k) {
     return {Eigen::Vector3d(t.deflection * L, 0.0, t.axial * L), correction};
   }
   const rod::RodModel m = cantilever(ratio, k);
-  const Eigen::Vector3d fine = tip(m, options(ode::Method::kRk8, kReferenceSteps, Kinematics::kFlat, true));
+  const Eigen::Vector3d fine =
+      tip(m, options(ode::Method::kRk8, kReferenceSteps, Kinematics::kFlat, true));
   const Eigen::Vector3d half =
       tip(m, options(ode::Method::kRk8, kReferenceSteps / 2, Kinematics::kFlat, true));
   EXPECT_LE((fine - half).norm(), kReferenceAgreement * L) << "RK8 reference not converged";
@@ -102,8 +104,8 @@ Reference reference_tip(double ratio, double k) {
 /// (check_order, RK4 schemes) the observed orders of the levels in the asymptotic range lie
 /// in [kOrder -+ kOrderTolerance].
 void expect_error_falls_to_round_off(double ratio, double k, const std::vector<int>& steps,
-                                            ode::Method method, Kinematics kinematics, bool planar,
-                                            const Reference& ref, bool check_order) {
+                                     ode::Method method, Kinematics kinematics, bool planar,
+                                     const Reference& ref, bool check_order) {
   const rod::RodModel m = cantilever(ratio, k);
   std::vector<double> h, err;
   for (int n : steps) {
@@ -111,20 +113,21 @@ void expect_error_falls_to_round_off(double ratio, double k, const std::vector<i
     err.push_back((tip(m, options(method, n, kinematics, planar)) - ref.tip).norm() / m.length_m);
   }
   const std::string table = test_support::convergence_table(h, err);
-  std::printf("[stiff rod] EA L^2/EI = %.0e, k = %g, %s%s\n%s", ratio, k,
-              planar ? "planar" : "3-D", kinematics == Kinematics::kLieGroup ? " (Lie)" : "",
-              table.c_str());
+  std::printf("[stiff rod] EA L^2/EI = %.0e, k = %g, %s%s\n%s", ratio, k, planar ? "planar" : "3-D",
+              kinematics == Kinematics::kLieGroup ? " (Lie)" : "", table.c_str());
   const double floor = std::max(kRoundOffLevel, ref.error_bound);
   for (std::size_t i = 1; i < err.size(); ++i) {
     EXPECT_TRUE(err[i] < err[i - 1] || err[i] <= floor)
-        << "error did not fall from " << steps[i - 1] << " to " << steps[i] << " steps\n" << table;
+        << "error did not fall from " << steps[i - 1] << " to " << steps[i] << " steps\n"
+        << table;
   }
   EXPECT_LE(err.back(), kFinestError) << table;
   if (!check_order) return;
   std::vector<double> ha, ea;
   for (std::size_t i = 0; i < err.size(); ++i) {
     // Ten times the reference's error bound: its error then changes the order by < 0.15.
-    if (steps[i] >= kAsymptoticSteps && err[i] >= std::max(kAsymptoticErrorFloor, 10.0 * ref.error_bound)) {
+    if (steps[i] >= kAsymptoticSteps &&
+        err[i] >= std::max(kAsymptoticErrorFloor, 10.0 * ref.error_bound)) {
       ha.push_back(h[i]);
       ea.push_back(err[i]);
     }
@@ -159,8 +162,8 @@ TEST(StiffRod, ThreeDimensionalAndLieGroupTipErrorsFallToo) {
       const Reference ref = reference_tip(ratio, k);
       expect_error_falls_to_round_off(ratio, k, kRk4Steps, ode::Method::kRk4, Kinematics::kFlat,
                                       false, ref, true);
-      expect_error_falls_to_round_off(ratio, k, kRk4Steps, ode::Method::kRk4,
-                                      Kinematics::kLieGroup, false, ref, true);
+      expect_error_falls_to_round_off(ratio, k, kRk4Steps, ode::Method::kRk4, Kinematics::kLieGroup,
+                                      false, ref, true);
     }
   }
 }

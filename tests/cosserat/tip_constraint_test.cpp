@@ -118,8 +118,8 @@ TEST(TipConstraint, NormalOnlyHoldsTheNormalComponentWithAForceAlongTheNormal) {
   const rod::Result r = solver.make_result(act, sol, s);
   const Vector3d F = *r.tip_reaction_force_W_N;
   EXPECT_NEAR(n.dot(r.tip_position_W_m - h.target), 0.0, kHeldPosition_m);
-  EXPECT_LE((F - n.dot(F) * n).norm(), 1e-15);  // along the normal only
-  EXPECT_LT(n.dot(F), 0.0);                      // the holder pushes against the bending
+  EXPECT_LE((F - n.dot(F) * n).norm(), 1e-15);              // along the normal only
+  EXPECT_LT(n.dot(F), 0.0);                                 // the holder pushes against the bending
   EXPECT_GT((r.tip_position_W_m - h.target).norm(), 1e-6);  // tangentially free
   EXPECT_LE(s.force_imbalance_W_N.norm(), kImbalance_N);
   // As a tip load on the free rod it reproduces the constrained tip.
@@ -147,7 +147,8 @@ TEST(TipConstraint, SensitivityJacobianOfConstrainedResidualMatchesCentralDiffer
     Eigen::MatrixXd Js, Jc;
     ASSERT_TRUE(ss.jacobian(act, x, Js));
     ASSERT_TRUE(sc.jacobian(act, x, Jc));
-    EXPECT_LE((Js - Jc).norm(), kJacobianRelative * Jc.norm()) << (normal_only ? "normal" : "pinned");
+    EXPECT_LE((Js - Jc).norm(), kJacobianRelative * Jc.norm())
+        << (normal_only ? "normal" : "pinned");
   }
 }
 

@@ -58,13 +58,14 @@ TEST(Richardson, IdenticalLevelsGiveNoOrder) {
   EXPECT_EQ(r.value, u[2]);
 }
 
-rod::Result make_result(const Eigen::Vector3d& tip, const Eigen::Matrix3d& R, std::vector<double> tensions,
-                        std::vector<double> elongations = {}) {
+rod::Result make_result(const Eigen::Vector3d& tip, const Eigen::Matrix3d& R,
+                        std::vector<double> tensions, std::vector<double> elongations = {}) {
   rod::Result r;
   r.tip_position_W_m = tip;
   r.tip_R_WB = R;
   elongations.resize(tensions.size(), 0.0);
-  for (std::size_t i = 0; i < tensions.size(); ++i) r.actuators.push_back({"a", tensions[i], elongations[i]});
+  for (std::size_t i = 0; i < tensions.size(); ++i)
+    r.actuators.push_back({"a", tensions[i], elongations[i]});
   r.centerline_s_m = {0.0, 0.02, 0.04};
   r.centerline_p_W_m = {Eigen::Vector3d::Zero(), 0.5 * tip, tip};
   return r;
@@ -72,9 +73,10 @@ rod::Result make_result(const Eigen::Vector3d& tip, const Eigen::Matrix3d& R, st
 
 TEST(Difference, MeasuresTipDistanceRotationAngleAndLargestTensionAndElongationGaps) {
   const double angle = 1e-9;  // small: acos of the trace would lose it
-  const rod::Result a = make_result({0, 0, 0.04}, Eigen::Matrix3d::Identity(), {1.0, -2.0}, {1e-3, -2e-3});
-  const rod::Result b =
-      make_result({3e-6, 4e-6, 0.04}, so3::exp(Eigen::Vector3d(0.0, angle, 0.0)), {1.5, -2.25}, {0.5e-3, -2.75e-3});
+  const rod::Result a =
+      make_result({0, 0, 0.04}, Eigen::Matrix3d::Identity(), {1.0, -2.0}, {1e-3, -2e-3});
+  const rod::Result b = make_result({3e-6, 4e-6, 0.04}, so3::exp(Eigen::Vector3d(0.0, angle, 0.0)),
+                                    {1.5, -2.25}, {0.5e-3, -2.75e-3});
   const ResultDifference d = difference(a, b);
   EXPECT_NEAR(d.tip_m, 5e-6, kRoundOff);
   EXPECT_NEAR(d.mid_m, 2.5e-6, kRoundOff);
@@ -164,7 +166,9 @@ TEST(AsymptoticRange, EndsWhereTheErrorStopsFallingAtTheFloor) {
   for (double hi : h) clean.push_back(std::pow(hi, 4.0));
   EXPECT_EQ(asymptotic_level_count(h, clean, order_bracket(2), std::vector<double>(6, 1.0)), 6);
   // A zero error (an exact level) counts as refinement that stopped helping.
-  EXPECT_EQ(asymptotic_level_count({0.5, 0.25, 0.125}, {1e-3, 6e-5, 0.0}, order_bracket(2), {1e-6, 1e-6, 1e-6}), 2);
+  EXPECT_EQ(asymptotic_level_count({0.5, 0.25, 0.125}, {1e-3, 6e-5, 0.0}, order_bracket(2),
+                                   {1e-6, 1e-6, 1e-6}),
+            2);
   EXPECT_THROW(asymptotic_level_count(h, e, order_bracket(2), {1e-8}), std::invalid_argument);
 }
 
@@ -214,7 +218,8 @@ TEST(AsymptoticRange, StiffCantileverStudyReportsTheFloorInsteadOfAReversedOrder
   EXPECT_TRUE(b.contains(study.asymptotic_order)) << table;
   for (std::size_t i = study.asymptotic_levels; i < study.levels.size(); ++i) {
     EXPECT_TRUE(study.levels[i].round_off) << table;
-    EXPECT_LE(study.levels[i].error_m, kFloorEstimateFactor * study.levels[i].floor_estimate_m) << table;
+    EXPECT_LE(study.levels[i].error_m, kFloorEstimateFactor * study.levels[i].floor_estimate_m)
+        << table;
   }
   EXPECT_NE(table.find("round-off floor"), std::string::npos) << table;
   const std::string csv = convergence_csv_rows(m.name, study);

@@ -1,6 +1,8 @@
 // Strict JSON reading (rod/json_file.hpp): deep nesting, numbers outside the double range
 // and duplicate keys are input errors naming the file and the key path, before anything
 // recursive runs; scenario and material files are read this way.
+#include "rod/json_file.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "rod/json_file.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::rod {
@@ -48,17 +49,19 @@ TEST(JsonFile, NestingDeeperThanTheLimitIsRefusedWithoutRecursion) {
   const std::string key = refused_key(nested_arrays(100000), &rule);
   EXPECT_EQ(key.rfind("f.json:[0][0][0]", 0), 0u) << key;
   EXPECT_NE(key.find("..."), std::string::npos) << "a 256-level path is abbreviated: " << key;
-  EXPECT_NE(rule.find("(nesting depth 257) nests arrays and objects deeper than 256 levels"), std::string::npos)
+  EXPECT_NE(rule.find("(nesting depth 257) nests arrays and objects deeper than 256 levels"),
+            std::string::npos)
       << rule;
-  EXPECT_EQ(refused_key("{\"name\": " + nested_arrays(300) + "}").rfind("f.json:name[0][0]", 0), 0u);
+  EXPECT_EQ(refused_key("{\"name\": " + nested_arrays(300) + "}").rfind("f.json:name[0][0]", 0),
+            0u);
   EXPECT_NO_THROW((void)parse_json_text(nested_arrays(kMaxJsonDepth), "f.json", "scenario file"));
 }
 
 TEST(JsonFile, NumberOutsideTheDoubleRangeNamesItsKeyPath) {
   expect_refused(R"({"body": {"length_m": 1e400}})", "f.json:body.length_m", "1e400",
                  "outside the range of a double");
-  expect_refused(R"({"actuators": [{"name": "a"}, {"count": -2e308}]})", "f.json:actuators[1].count",
-                 "-2e308", "outside the range of a double");
+  expect_refused(R"({"actuators": [{"name": "a"}, {"count": -2e308}]})",
+                 "f.json:actuators[1].count", "-2e308", "outside the range of a double");
   expect_refused(R"({"v": [1, 2, [3, 1e999]]})", "f.json:v[2][1]", "1e999", "outside the range");
 }
 
@@ -68,8 +71,8 @@ TEST(JsonFile, DuplicateKeyNamesItsKeyPath) {
   expect_refused(R"({"actuators": [{}, {"drive": 1, "name": "x", "drive": 2}]})",
                  "f.json:actuators[1].drive", "\"drive\"", "appears twice");
   // The same key in different objects is fine.
-  EXPECT_NO_THROW((void)parse_json_text(R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 1}, {"k": 2}]})",
-                                        "f.json", "scenario file"));
+  EXPECT_NO_THROW((void)parse_json_text(
+      R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 1}, {"k": 2}]})", "f.json", "scenario file"));
 }
 
 TEST(JsonFile, SyntaxErrorNamesTheFile) {
@@ -92,7 +95,8 @@ std::string write_temp(const std::string& name, const std::string& text) {
 TEST(JsonFile, ScenarioAndMaterialFilesAreReadStrictly) {
   const std::string deep = write_temp("deep.json", nested_arrays(100000));
   EXPECT_THROW((void)read_scenario(deep), InputError);
-  const std::string dup = write_temp("dup.json", R"({"schema": "tcasim.scenario/1", "schema": "x"})");
+  const std::string dup =
+      write_temp("dup.json", R"({"schema": "tcasim.scenario/1", "schema": "x"})");
   try {
     (void)read_scenario(dup);
     ADD_FAILURE();

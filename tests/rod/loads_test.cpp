@@ -1,9 +1,10 @@
 // rod::Loads: the loads of the model file, setters, the load scale and validation.
+#include "rod/loads.hpp"
+
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "rod/loads.hpp"
 #include "support/rod_models.hpp"
 
 namespace tcasim::rod {
@@ -48,7 +49,8 @@ TEST(Loads, SettersChangeOneActuatorAndRejectABadIndex) {
 TEST(Loads, AppliedScalesForcesAndRampsTemperaturesFromTheReference) {
   const RodModel m = two_actuator_model();
   Loads l = Loads::from_model(m);
-  EXPECT_EQ(l.applied(m).actuators[0].segments[0].temperature_K, l.actuators[0].segments[0].temperature_K);
+  EXPECT_EQ(l.applied(m).actuators[0].segments[0].temperature_K,
+            l.actuators[0].segments[0].temperature_K);
   l.load_scale = 0.25;
   const Loads a = l.applied(m);
   EXPECT_EQ(a.load_scale, 1.0);
@@ -57,7 +59,8 @@ TEST(Loads, AppliedScalesForcesAndRampsTemperaturesFromTheReference) {
   EXPECT_EQ(a.tip_moment_W_Nm, 0.25 * m.tip_moment_W_Nm);
   EXPECT_EQ(a.gravity_W_m_s2, 0.25 * m.gravity_W_m_s2);
   const double t_ref = m.actuators[0].drive.tca->material().reference_temperature_K;
-  EXPECT_DOUBLE_EQ(a.actuators[0].segments[0].temperature_K, t_ref + 0.25 * (units::degC_to_K(60.0) - t_ref));
+  EXPECT_DOUBLE_EQ(a.actuators[0].segments[0].temperature_K,
+                   t_ref + 0.25 * (units::degC_to_K(60.0) - t_ref));
   const RodModel scaled = with_loads(m, l);
   EXPECT_EQ(scaled.actuators[1].drive.tension_N, a.actuators[1].tension_N);
   EXPECT_EQ(scaled.tip_force_W_N, a.tip_force_W_N);
@@ -101,7 +104,8 @@ TEST(Loads, CharacteristicForceIsTheLargerOfTheBendingScaleAndTheLargestLoad) {
   EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), 4.0);
   l = Loads::from_model(m);
   l.gravity_W_m_s2 = {0.0, 0.0, -1e6};
-  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), m.material.density_kg_m3 * m.section.area_m2 * 1e6 * L);
+  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l),
+                   m.material.density_kg_m3 * m.section.area_m2 * 1e6 * L);
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 // Section geometry, routing derivatives and stiffness helpers of rod::RodModel.
+#include "rod/model.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "rod/model.hpp"
 
 namespace tcasim::rod {
 namespace {

@@ -1,5 +1,7 @@
 // Atomic output (rod/output_file.hpp): a file is written whole or not at all, and a failed
 // write leaves an existing file intact and no temporary behind.
+#include "rod/output_file.hpp"
+
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
@@ -10,7 +12,6 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "rod/output_file.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -74,7 +75,8 @@ TEST_F(OutputFile, FailedWriteKeepsTheOldFileAndLeavesNoTemporary) {
   ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &saved), 0);
   std::signal(SIGXFSZ, old_handler);
   EXPECT_TRUE(threw);
-  EXPECT_NE(message.find("--out = \"" + f.string() + "\" could not be written"), std::string::npos) << message;
+  EXPECT_NE(message.find("--out = \"" + f.string() + "\" could not be written"), std::string::npos)
+      << message;
   EXPECT_EQ(read(f), "old content\n");
   EXPECT_EQ(entries(dir_), 1) << "a temporary was left behind";
 }

@@ -57,7 +57,8 @@ TEST(ReferencePath, StraightStringOnAPrecurvedBodyHasTheClosedFormLength) {
   Routing r;
   r.offset_m = {0.002, -0.001};
   const Eigen::Vector3d w(10.0, -5.0, 2.0);
-  const double expected = 0.05 * Eigen::Vector3d(-2.0 * -0.001, 2.0 * 0.002, 1.0 + 10.0 * -0.001 + 5.0 * 0.002).norm();
+  const double expected =
+      0.05 * Eigen::Vector3d(-2.0 * -0.001, 2.0 * 0.002, 1.0 + 10.0 * -0.001 + 5.0 * 0.002).norm();
   const ReferencePath p = reference_path(r, w, 0.05);
   EXPECT_NEAR(p.length_m / expected, 1.0, kRoundOff);
   EXPECT_NEAR(p.min_axial, 1.0 + 10.0 * -0.001 + 5.0 * 0.002, kRoundOff);
@@ -93,7 +94,8 @@ TEST(ReferencePath, HelixWithoutBendingPrecurvatureKeepsItsClosedForm) {
   r.radius_m = 0.003;
   r.turns_per_m = 25.0;
   const double c = 2.0 * 3.14159265358979323846 * 25.0 * 0.003;
-  EXPECT_NEAR(reference_path(r, Eigen::Vector3d::Zero(), 0.04).length_m, 0.04 * std::sqrt(1.0 + c * c), 1e-17);
+  EXPECT_NEAR(reference_path(r, Eigen::Vector3d::Zero(), 0.04).length_m,
+              0.04 * std::sqrt(1.0 + c * c), 1e-17);
 }
 
 TEST(RestLength, StraightStringFoldingOnThePrecurvedBodyIsRefused) {
@@ -103,7 +105,8 @@ TEST(RestLength, StraightStringFoldingOnThePrecurvedBodyIsRefused) {
   expect_refused(doc, "actuators[0].routing.offset_m", "fold on the precurved body");
   // The same curvature with the string on the outer side is a regular path.
   doc["actuators"][0]["routing"]["offset_m"] = {-0.002, 0.0};
-  EXPECT_NEAR(parse_scenario(doc).actuators[0].rest_length_m, 0.040 * (1.0 + 400.0 * 0.002), kRoundOff);
+  EXPECT_NEAR(parse_scenario(doc).actuators[0].rest_length_m, 0.040 * (1.0 + 400.0 * 0.002),
+              kRoundOff);
 }
 
 TEST(RestLength, HelixFoldingWhereItPassesTheCentreOfCurvatureIsRefused) {
@@ -116,10 +119,12 @@ TEST(RestLength, HelixFoldingWhereItPassesTheCentreOfCurvatureIsRefused) {
 TEST(RestLength, TendonOnAPrecurvedBodyHasZeroElongationAtRest) {
   // precurved-rod.json: its tendon's rest length is the reference path length (it was the
   // body length, which reported +0.88 mm of elongation with no load).
-  const auto file = std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "precurved-rod.json";
+  const auto file =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "precurved-rod.json";
   const RodModel m = read_scenario(file.string());
   const Actuator& a = m.actuators.at(0);
-  const Eigen::Vector3d q = Eigen::Vector3d::UnitZ() + m.reference_curvature_B_1_m.cross(a.routing.r(0.0));
+  const Eigen::Vector3d q =
+      Eigen::Vector3d::UnitZ() + m.reference_curvature_B_1_m.cross(a.routing.r(0.0));
   EXPECT_NEAR(a.rest_length_m / (m.length_m * q.norm()), 1.0, kRoundOff);
   EXPECT_GT(a.rest_length_m - m.length_m, 8e-4);  // the 0.88 mm that used to be reported
 }
@@ -127,9 +132,12 @@ TEST(RestLength, TendonOnAPrecurvedBodyHasZeroElongationAtRest) {
 TEST(RestLength, TcaCoiledLengthMustMatchTheReferencePath) {
   // Reference path 40 mm x (1 + 5 1/m x 3 mm) = 40.6 mm (circular-manipulator.json).
   const double path = 0.040 * 1.015;
-  EXPECT_NEAR(parse_scenario(scenario(-5.0, path * (1.0 + 0.9e-6))).actuators[0].rest_length_m, path, kRoundOff);
-  expect_refused(scenario(-5.0, 0.040), "tcas.t.coiled_length_m", "must equal the reference path length 0.0406 m");
-  expect_refused(scenario(-5.0, path * (1.0 + 1.1e-6)), "tcas.t.coiled_length_m", "within 1e-06 relative");
+  EXPECT_NEAR(parse_scenario(scenario(-5.0, path * (1.0 + 0.9e-6))).actuators[0].rest_length_m,
+              path, kRoundOff);
+  expect_refused(scenario(-5.0, 0.040), "tcas.t.coiled_length_m",
+                 "must equal the reference path length 0.0406 m");
+  expect_refused(scenario(-5.0, path * (1.0 + 1.1e-6)), "tcas.t.coiled_length_m",
+                 "within 1e-06 relative");
 }
 
 TEST(RestLength, PreElongationSetsTheRestLengthBelowThePath) {
@@ -144,7 +152,8 @@ TEST(RestLength, PreElongationOutsideWhatTheTcaCanHaveIsRefused) {
   doc["actuators"][0]["pre_elongation_m"] = -0.0001;  // shorter than closed
   expect_refused(doc, "actuators[0].pre_elongation_m", "must be >= 0 for an extension TCA");
   doc["actuators"][0]["pre_elongation_m"] = 0.2;  // fiber 0.040/sin(15 deg) = 0.1545 m
-  expect_refused(doc, "actuators[0].pre_elongation_m", "(-coiled_length_m, fiber_length_m - coiled_length_m)");
+  expect_refused(doc, "actuators[0].pre_elongation_m",
+                 "(-coiled_length_m, fiber_length_m - coiled_length_m)");
   doc["actuators"][0]["pre_elongation_m"] = "0.001";
   expect_refused(doc, "actuators[0].pre_elongation_m", "must be a number");
   doc["actuators"][0]["pre_elongation_m"] = 0.001;

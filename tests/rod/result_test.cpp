@@ -1,4 +1,6 @@
 // Result file serialization and the paper's three-point inner-edge radius metric.
+#include "rod/result.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -9,7 +11,6 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "rod/result.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::rod {
@@ -155,8 +156,11 @@ TEST(ResultJson, NonFiniteValueBecomesNullAndMarksTheResultNotConverged) {
 }
 
 TEST(FormatJson, PutsScalarArraysOnOneLineAndParsesBack) {
-  const json small = {{"p", {1.5, -2.0, 3.0}}, {"m", {{1, 0}, {0, 1}}}, {"e", json::array()},
-                      {"o", json::object()}, {"s", "x"}};
+  const json small = {{"p", {1.5, -2.0, 3.0}},
+                      {"m", {{1, 0}, {0, 1}}},
+                      {"e", json::array()},
+                      {"o", json::object()},
+                      {"s", "x"}};
   EXPECT_EQ(format_json(small),
             "{\n  \"e\": [],\n  \"m\": [\n    [1, 0],\n    [0, 1]\n  ],\n  \"o\": {},\n"
             "  \"p\": [1.5, -2.0, 3.0],\n  \"s\": \"x\"\n}");
@@ -166,7 +170,8 @@ TEST(FormatJson, PutsScalarArraysOnOneLineAndParsesBack) {
 
 TEST(WriteResult, WritesAFileOrStdoutAndNamesAnUnwritablePath) {
   const Result r = sample_result();
-  const auto path = (std::filesystem::temp_directory_path() / "tcasim_rod_test_result.json").string();
+  const auto path =
+      (std::filesystem::temp_directory_path() / "tcasim_rod_test_result.json").string();
   write_result(r, path);
   std::ifstream in(path);
   EXPECT_EQ(json::parse(in), json::parse(to_json(r).dump()));
@@ -296,8 +301,8 @@ namespace tcasim::rod {
 namespace {
 
 TEST(SetCoilContacts, ClosedBelowTheBlockedForceWithItsContactForceAndWritesBoth) {
-  const std::filesystem::path file =
-      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "square-manipulator.json";
+  const std::filesystem::path file = std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" /
+                                     "scenarios" / "square-manipulator.json";
   RodModel model = read_scenario(file.string());
   const Actuator& act = model.actuators.at(0);
   const double t_K = act.drive.segments.at(0).temperature_K;

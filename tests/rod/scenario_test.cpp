@@ -1,9 +1,10 @@
 // Scenario reading: a full valid scenario gives the right numbers; every rule of
 // docs/scenario-format.md rejects a bad value with its key path, value and rule.
+#include "rod/scenario.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -13,7 +14,6 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "rod/scenario.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -98,7 +98,8 @@ void expect_rejected(const json& doc, const std::string& key, const std::string&
     ADD_FAILURE() << "accepted; expected rejection of " << key;
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_TRUE(contains(e.value(), value)) << "value '" << e.value() << "' lacks '" << value << "'";
+    EXPECT_TRUE(contains(e.value(), value))
+        << "value '" << e.value() << "' lacks '" << value << "'";
     EXPECT_TRUE(contains(e.rule(), rule)) << "rule '" << e.rule() << "' lacks '" << rule << "'";
     const std::string what = e.what();
     EXPECT_TRUE(contains(what, key) && contains(what, value) && contains(what, rule)) << what;
@@ -198,8 +199,8 @@ TEST(ParseScenario, TendonRestLengthIsThePathLengthByQuadrature) {
   double sum = 0.0;
   for (int i = 0; i <= kIntervals; ++i) {
     const double s = i * h;
-    const double f = (Eigen::Vector3d::UnitZ() + m.reference_curvature_B_1_m.cross(helix.routing.r(s)) +
-                      helix.routing.dr(s))
+    const double f = (Eigen::Vector3d::UnitZ() +
+                      m.reference_curvature_B_1_m.cross(helix.routing.r(s)) + helix.routing.dr(s))
                          .norm();
     sum += f * ((i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0));
   }
@@ -231,8 +232,8 @@ TEST(ParseScenario, RectangleSectionGivesSecondMomentsAboutBodyAxes) {
 /// Saint-Venant torsion constant of an a x b rectangle (a >= b) is k1 a b^3.
 double saint_venant(double w, double h) {
   json doc = minimal();
-  doc["body"]["section"] = {{"shape", "rectangle"}, {"width_m", w}, {"height_m", h},
-                            {"torsion", "saint-venant"}};
+  doc["body"]["section"] = {
+      {"shape", "rectangle"}, {"width_m", w}, {"height_m", h}, {"torsion", "saint-venant"}};
   doc["actuators"] = json::array();  // its offset would not fit every rectangle
   const RodModel m = parse_scenario(doc);
   EXPECT_TRUE(m.section.saint_venant_torsion);
@@ -259,8 +260,11 @@ TEST(ParseScenario, CircleSaintVenantEqualsPolarAndCustomIsTakenAsGiven) {
   EXPECT_NEAR(c.section.J_m4 / (c.section.I_x_m4 + c.section.I_y_m4), 1.0, kRoundOff);
 
   doc = minimal();
-  doc["body"]["section"] = {{"shape", "custom"}, {"area_m2", 1e-5}, {"I_x_m4", 2e-11},
-                            {"I_y_m4", 3e-11}, {"J_m4", 4e-11}};
+  doc["body"]["section"] = {{"shape", "custom"},
+                            {"area_m2", 1e-5},
+                            {"I_x_m4", 2e-11},
+                            {"I_y_m4", 3e-11},
+                            {"J_m4", 4e-11}};
   const RodModel m = parse_scenario(doc);
   EXPECT_EQ(m.section.shape, Section::Shape::kCustom);
   EXPECT_EQ(m.section.area_m2, 1e-5);
@@ -351,7 +355,9 @@ TEST(ReadScenario, ReadsAFileAndNamesTheFileOnIoAndJsonErrors) {
 }
 
 TEST(ReadTcas, ReadsATcaFileOrTheTcasOfAScenario) {
-  json tcas_file = {{"schema", "tcasim.tcas/1"}, {"name", "test-tcas"}, {"comment", "two TCAs"},
+  json tcas_file = {{"schema", "tcasim.tcas/1"},
+                    {"name", "test-tcas"},
+                    {"comment", "two TCAs"},
                     {"tcas", full()["tcas"]}};
   const std::string a = write_temp("tcas.json", tcas_file.dump());
   const auto from_tca_file = read_tcas(a);
@@ -389,7 +395,8 @@ TEST(RejectScenario, WrongSchema) {
 TEST(RejectScenario, UnknownKeyListsTheAllowedOnes) {
   json doc = full();
   doc["gravity"] = {0, 0, -9.81};
-  expect_rejected(doc, "gravity", "[0,0,-9.81]", "allowed: schema, name, comment, body, gravity_m_s2");
+  expect_rejected(doc, "gravity", "[0,0,-9.81]",
+                  "allowed: schema, name, comment, body, gravity_m_s2");
   doc = full();
   doc["body"]["section"]["radius_m"] = 0.004;
   expect_rejected(doc, "body.section.radius_m", "0.004", "allowed: shape, torsion, diameter_m");
@@ -398,7 +405,7 @@ TEST(RejectScenario, UnknownKeyListsTheAllowedOnes) {
   expect_rejected(doc, "actuators[2].drive.temperature_degC", "50", "is not an allowed key");
   doc = minimal();
   doc["body"]["section"] = {{"shape", "custom"}, {"area_m2", 1e-5}, {"I_x_m4", 2e-11},
-                            {"I_y_m4", 3e-11}, {"J_m4", 4e-11}, {"torsion", "saint-venant"}};
+                            {"I_y_m4", 3e-11},   {"J_m4", 4e-11},   {"torsion", "saint-venant"}};
   expect_rejected(doc, "body.section.torsion", "saint-venant", "is not an allowed key");
 }
 
@@ -467,7 +474,8 @@ TEST(RejectScenario, GravityWithoutDensity) {
 TEST(RejectScenario, UnknownSectionShape) {
   json doc = full();
   doc["body"]["section"]["shape"] = "hexagon";
-  expect_rejected(doc, "body.section.shape", "\"hexagon\"", "must be one of: circle, rectangle, custom");
+  expect_rejected(doc, "body.section.shape", "\"hexagon\"",
+                  "must be one of: circle, rectangle, custom");
 }
 
 TEST(RejectScenario, CountNotAPositiveInteger) {
@@ -495,9 +503,11 @@ TEST(RejectScenario, CountAboveTheBound) {
 TEST(RejectScenario, TooManySegmentsOrActuators) {
   json doc = full();
   json segs = json::array();
-  for (int i = 0; i < 1001; ++i) segs.push_back({{"fraction", 1.0 / 1001}, {"temperature_degC", 60}});
+  for (int i = 0; i < 1001; ++i)
+    segs.push_back({{"fraction", 1.0 / 1001}, {"temperature_degC", 60}});
   doc["actuators"][1]["drive"]["segments"] = segs;
-  expect_rejected(doc, "actuators[1].drive.segments", "1001 segments", "must have at most 1000 segments");
+  expect_rejected(doc, "actuators[1].drive.segments", "1001 segments",
+                  "must have at most 1000 segments");
   doc = full();
   json acts = json::array();
   for (int i = 0; i < 257; ++i) {
@@ -571,10 +581,12 @@ TEST(RejectScenario, TemperatureOutsideTheMaterialRange) {
 TEST(RejectScenario, StraightOffsetOutsideTheSection) {
   json doc = full();
   doc["actuators"][0]["routing"]["offset_m"] = {0.003, 0.003};  // |r| = 4.24 mm > 4 mm
-  expect_rejected(doc, "actuators[0].routing.offset_m", "[0.003,0.003]", "lies outside the body section");
+  expect_rejected(doc, "actuators[0].routing.offset_m", "[0.003,0.003]",
+                  "lies outside the body section");
   doc = minimal();
   doc["actuators"][0]["routing"]["offset_m"] = {0.004, 0.0021};  // above the 2 mm top edge
-  expect_rejected(doc, "actuators[0].routing.offset_m", "[0.004,0.0021]", "outside the body section");
+  expect_rejected(doc, "actuators[0].routing.offset_m", "[0.004,0.0021]",
+                  "outside the body section");
 }
 
 TEST(RejectScenario, HelixRadiusNotPositiveOrOutsideTheSection) {
@@ -582,7 +594,8 @@ TEST(RejectScenario, HelixRadiusNotPositiveOrOutsideTheSection) {
   doc["actuators"][2]["routing"]["radius_m"] = 0;
   expect_rejected(doc, "actuators[2].routing.radius_m", "0", "must be positive");
   doc["actuators"][2]["routing"]["radius_m"] = 0.0041;
-  expect_rejected(doc, "actuators[2].routing.radius_m", "0.0041", "puts the helix outside the body section");
+  expect_rejected(doc, "actuators[2].routing.radius_m", "0.0041",
+                  "puts the helix outside the body section");
   doc = minimal();
   doc["actuators"][0]["routing"] = {{"type", "helix"}, {"radius_m", 0.003}, {"turns_per_m", 10}};
   // Fits along x (5 mm) but not along y (2 mm).
@@ -615,7 +628,8 @@ TEST(RejectScenario, TcaWithBothOrNeitherFiberLengthAndPitchAngle) {
   expect_rejected(doc, "tcas.manipulator-tca.pitch_angle_deg", "15", "give exactly one");
   doc = full();
   doc["tcas"]["manipulator-tca"].erase("pitch_angle_deg");
-  expect_rejected(doc, "tcas.manipulator-tca.fiber_length_m", "(missing)", "unless pitch_angle_deg");
+  expect_rejected(doc, "tcas.manipulator-tca.fiber_length_m", "(missing)",
+                  "unless pitch_angle_deg");
   doc = full();
   doc["tcas"]["manipulator-tca"]["pitch_angle_deg"] = 90;
   expect_rejected(doc, "tcas.manipulator-tca.pitch_angle_deg", "90", "must lie in (0, 90)");
@@ -630,7 +644,8 @@ TEST(RejectScenario, TcaConstructorErrorCarriesTheFullKeyPath) {
 TEST(RejectScenario, TcaKindUnknown) {
   json doc = full();
   doc["tcas"]["gripper-tca"]["kind"] = "torsional";
-  expect_rejected(doc, "tcas.gripper-tca.kind", "\"torsional\"", "must be one of: extension, contraction");
+  expect_rejected(doc, "tcas.gripper-tca.kind", "\"torsional\"",
+                  "must be one of: extension, contraction");
 }
 
 TEST(RejectScenario, MaterialPropertyMalformedOrNotPositive) {
@@ -644,7 +659,8 @@ TEST(RejectScenario, MaterialPropertyMalformedOrNotPositive) {
   expect_rejected(doc, "tcas.manipulator-tca.material.youngs_modulus_Pa", "", "must be positive");
   mat["youngs_modulus_Pa"] = 1e9;
   mat["diameter"] = {{"linear_expansion_1_K", 1e-4}, {"ratio_polynomial_degC", {1.0}}};
-  expect_rejected(doc, "tcas.manipulator-tca.material.diameter", "linear_expansion_1_K", "exactly one");
+  expect_rejected(doc, "tcas.manipulator-tca.material.diameter", "linear_expansion_1_K",
+                  "exactly one");
   mat["diameter"] = {{"linear_expansion_1_K", 1e-4}};
   mat["valid_range_degC"] = {200, 20};
   expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC", "[200,20]", "lo < hi");
@@ -657,10 +673,12 @@ TEST(RejectScenario, MaterialWithoutValidRange) {
   // An inline material without a range was taken as valid on [0 K, 1e9 K].
   json doc = full();
   doc["tcas"]["manipulator-tca"]["material"].erase("valid_range_degC");
-  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC", "(missing)", "is required");
+  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC", "(missing)",
+                  "is required");
   doc = full();
   doc["tcas"]["manipulator-tca"]["material"]["valid_range_degC"] = {-300, 200};
-  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC[0]", "-300", "below absolute zero");
+  expect_rejected(doc, "tcas.manipulator-tca.material.valid_range_degC[0]", "-300",
+                  "below absolute zero");
 }
 
 }  // namespace
@@ -672,7 +690,8 @@ namespace {
 // The project's own files must satisfy the reader (scenario files under
 // validation/scenarios/, materials under data/materials/).
 TEST(ShippedFiles, ValidationScenariosAndMaterialsParse) {
-  const std::filesystem::path dir = std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios";
+  const std::filesystem::path dir =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios";
   int parsed = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".json") continue;
@@ -710,8 +729,8 @@ namespace tcasim::rod {
 namespace {
 
 TEST(WithTcaMaterial, RebuildsEveryTcaOnTheMaterialAndRepointsTheActuators) {
-  const std::filesystem::path file =
-      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "square-manipulator.json";
+  const std::filesystem::path file = std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" /
+                                     "scenarios" / "square-manipulator.json";
   const RodModel base = read_scenario(file.string());
   const tca::Material other = load_material("silver-nylon-castigliano", "material");
   const RodModel m = with_tca_material(base, other, tca::F12Form::kPaper);
@@ -730,7 +749,8 @@ TEST(WithTcaMaterial, RebuildsEveryTcaOnTheMaterialAndRepointsTheActuators) {
   // The original model is untouched, and without an f12 override the form is kept.
   EXPECT_EQ(base.tcas.begin()->second->material().name, "silver-nylon-sun2022");
   const RodModel kept = with_tca_material(base, other);
-  EXPECT_EQ(kept.tcas.begin()->second->parameters().f12_form, base.tcas.begin()->second->parameters().f12_form);
+  EXPECT_EQ(kept.tcas.begin()->second->parameters().f12_form,
+            base.tcas.begin()->second->parameters().f12_form);
 }
 
 }  // namespace

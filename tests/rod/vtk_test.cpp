@@ -99,7 +99,8 @@ std::vector<std::string> strings(const std::string& text) {
 bool tags_balanced(const std::string& doc) {
   const std::regex tag("<(/?)([A-Za-z][A-Za-z0-9]*)[^>]*?(/?)>");
   std::vector<std::string> stack;
-  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), tag); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), tag); it != std::sregex_iterator();
+       ++it) {
     const auto& m = *it;
     if (m[3].length() > 0) continue;  // self-closing
     if (m[1].length() == 0) {
@@ -117,7 +118,8 @@ TEST(Vtp, HasOnePolylinePerCurveWithCountsAndOffsetsThatMatch) {
   const Result result = sample_result(9);
   const std::string doc = vtp_document(model, result);
   EXPECT_TRUE(tags_balanced(doc));
-  EXPECT_NE(doc.find("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\""), std::string::npos);
+  EXPECT_NE(doc.find("<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\""),
+            std::string::npos);
   // Centerline + 2 actuators (the count-2 actuator is one path), 9 points each.
   EXPECT_EQ(attribute(doc, "NumberOfPoints"), "27");
   EXPECT_EQ(attribute(doc, "NumberOfLines"), "3");
@@ -132,14 +134,16 @@ TEST(Vtp, PointDataAndFieldDataReadBack) {
   const RodModel model = sample_model();
   const Result result = sample_result(5);
   const std::string doc = vtp_document(model, result);
-  const auto ids = numbers<int>(data_array(doc, "actuator_id"));  // the point data array comes first
+  const auto ids =
+      numbers<int>(data_array(doc, "actuator_id"));  // the point data array comes first
   EXPECT_EQ(ids, (std::vector<int>{-1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1}));
   const auto s = numbers<double>(data_array(doc, "s_m"));
   ASSERT_EQ(s.size(), 15u);
   for (std::size_t k = 0; k < s.size(); ++k) EXPECT_EQ(s[k], result.centerline_s_m[k % 5]);
   EXPECT_EQ(strings(data_array(doc, "scenario")), std::vector<std::string>{"vtk-test"});
   EXPECT_EQ(strings(data_array(doc, "method")), std::vector<std::string>{"cosserat"});
-  EXPECT_EQ(strings(data_array(doc, "curve_names")), (std::vector<std::string>{"centerline", "tca-left", "helix"}));
+  EXPECT_EQ(strings(data_array(doc, "curve_names")),
+            (std::vector<std::string>{"centerline", "tca-left", "helix"}));
 }
 
 TEST(Vtp, CenterlinePointsReadBackBitExactAndActuatorOffsetsEqualRTimesR) {
@@ -157,7 +161,8 @@ TEST(Vtp, CenterlinePointsReadBackBitExactAndActuatorOffsetsEqualRTimesR) {
       const Eigen::Vector3d offset = point(a + 1, k) - point(0, k);
       const Eigen::Vector3d expected =
           result.centerline_R_WB[k] * model.actuators[a].routing.r(result.centerline_s_m[k]);
-      EXPECT_LE((offset - expected).cwiseAbs().maxCoeff(), kOffsetAbs_m) << "actuator " << a << " sample " << k;
+      EXPECT_LE((offset - expected).cwiseAbs().maxCoeff(), kOffsetAbs_m)
+          << "actuator " << a << " sample " << k;
     }
   }
   // The helix path's offset has the routing's radius; the straight one the offset's norm.
@@ -214,7 +219,8 @@ TEST(ShapeCsv, OneRowPerPointWithCurveNamesAndNumbersThatReadBack) {
     if (curve == "centerline") {
       EXPECT_EQ(id, "-1");
       EXPECT_EQ(std::stod(s), result.centerline_s_m[k]);
-      EXPECT_EQ(Eigen::Vector3d(std::stod(x), std::stod(y), std::stod(z)), result.centerline_p_W_m[k]);
+      EXPECT_EQ(Eigen::Vector3d(std::stod(x), std::stod(y), std::stod(z)),
+                result.centerline_p_W_m[k]);
       ++k;
     }
   }

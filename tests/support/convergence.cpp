@@ -30,10 +30,10 @@ std::string convergence_table(const std::vector<double>& h, const std::vector<do
     if (!(p[i] >= lo && p[i] <= hi))
       bad += fmt::format(" order {:.4f} between levels {} and {};", p[i], i, i + 1);
   }
-  const std::string what = fmt::format("observed orders (from pair {}) vs bracket [{}, {}]",
-                                       first_checked, lo, hi);
-  if (bad.empty()) return ::testing::AssertionSuccess() << what << " hold\n"
-                                                        << convergence_table(h, errors);
+  const std::string what =
+      fmt::format("observed orders (from pair {}) vs bracket [{}, {}]", first_checked, lo, hi);
+  if (bad.empty())
+    return ::testing::AssertionSuccess() << what << " hold\n" << convergence_table(h, errors);
   return ::testing::AssertionFailure() << what << " violated:" << bad << "\n"
                                        << convergence_table(h, errors);
 }

@@ -2,10 +2,10 @@
 /// Observed convergence orders and a two-sided order gate for tests.
 #include <gtest/gtest.h>
 
-#include "common/convergence.hpp"
-
 #include <string>
 #include <vector>
+
+#include "common/convergence.hpp"
 
 namespace tcasim::test_support {
 

@@ -102,7 +102,8 @@ inline std::shared_ptr<const tca::Tca> manipulator_tca() {
   p.outer_diameter_m = 0.0017;
   p.twist_turns = 76.4;
   p.f12_form = tca::F12Form::kCastigliano;
-  return std::make_shared<const tca::Tca>(p, rod::load_material("silver-nylon-sun2022", "material"));
+  return std::make_shared<const tca::Tca>(p,
+                                          rod::load_material("silver-nylon-sun2022", "material"));
 }
 
 /// Appends a TCA-driven straight string at (x, y) at uniform temperature t_K.
@@ -124,8 +125,8 @@ inline void add_tca_string(rod::RodModel& m, const std::string& name,
 }
 
 /// Initial bending of the circular manipulator (docs/conventions.md "Initial bending": it
-/// has one; the paper gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the TCA,
-/// so the cold TCA is slightly stretched (delta > 0, coils open).
+/// has one; the paper gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the
+/// TCA, so the cold TCA is slightly stretched (delta > 0, coils open).
 inline const Eigen::Vector3d kCircularInitialCurvature_1_m{0.0, -0.5, 0.0};
 /// Gravity: the manipulators stand on their base with the centerline along +z, so
 /// gravity is along -z.

@@ -40,11 +40,12 @@ const std::vector<FitParameter> kShearAndExpansion = {FitParameter::kShearModulu
 
 TEST(TcaCalibration, ParameterAccessorsSetValueSlopeAndExpansion) {
   const Material m = softening();
-  for (const FitParameter p : {FitParameter::kYoungsModulus, FitParameter::kYoungsModulusSlope,
-                               FitParameter::kShearModulus, FitParameter::kShearModulusSlope,
-                               FitParameter::kExpansion}) {
+  for (const FitParameter p :
+       {FitParameter::kYoungsModulus, FitParameter::kYoungsModulusSlope,
+        FitParameter::kShearModulus, FitParameter::kShearModulusSlope, FitParameter::kExpansion}) {
     const double v = 1.37 * parameter_value(m, p) + 11.0;
-    EXPECT_NEAR(parameter_value(with_parameter(m, p, v), p), v, 1e-12 * std::abs(v)) << to_string(p);
+    EXPECT_NEAR(parameter_value(with_parameter(m, p, v), p), v, 1e-12 * std::abs(v))
+        << to_string(p);
     EXPECT_EQ(parse_fit_parameter(to_string(p), "--fit"), p);
   }
   // Setting the slope keeps the value at T_ref.
@@ -88,9 +89,9 @@ TEST(TcaCalibration, RecoversThreeParametersIncludingWeakYoungsModulus) {
   Material truth = with_parameter(softening(), FitParameter::kYoungsModulus, 1.8e9);
   truth = with_parameter(truth, FitParameter::kShearModulus, 0.38e9);
   const auto data = synthetic_data(p, truth);
-  const CalibrationResult r =
-      calibrate(p, softening(), data,
-                {FitParameter::kYoungsModulus, FitParameter::kShearModulus, FitParameter::kExpansion});
+  const CalibrationResult r = calibrate(
+      p, softening(), data,
+      {FitParameter::kYoungsModulus, FitParameter::kShearModulus, FitParameter::kExpansion});
   EXPECT_NE(r.status, CalibrationStatus::kFailed) << r.message;
   EXPECT_NEAR(r.values[0], 1.8e9, kExactRelTol * 1.8e9);
   EXPECT_NEAR(r.values[1], 0.38e9, kExactRelTol * 0.38e9);
@@ -108,9 +109,11 @@ TEST(TcaCalibration, NoisyDataGiveEstimatesWithinThreeStandardErrors) {
   for (Measurement& m : data) m.elongation_m += noise(rng);
   const CalibrationResult r = calibrate(p, sun2022(), data, kShearAndExpansion);
   EXPECT_NE(r.status, CalibrationStatus::kFailed) << r.message;
-  std::printf("noisy fit (%s, %d iterations): G = %.6g +- %.3g Pa, expansion = %.6g +- %.3g, "
-              "rms %.3g m\n", to_string(r.status), r.iterations, r.values[0], r.standard_errors[0],
-              r.values[1], r.standard_errors[1], r.rms_residual_m);
+  std::printf(
+      "noisy fit (%s, %d iterations): G = %.6g +- %.3g Pa, expansion = %.6g +- %.3g, "
+      "rms %.3g m\n",
+      to_string(r.status), r.iterations, r.values[0], r.standard_errors[0], r.values[1],
+      r.standard_errors[1], r.rms_residual_m);
   const double truth_values[] = {0.24e9, 0.9};
   for (std::size_t i = 0; i < 2; ++i) {
     ASSERT_TRUE(std::isfinite(r.standard_errors[i]));
@@ -142,7 +145,8 @@ TEST(TcaCalibration, ReadsCsvWithLoadInGrams) {
     (void)read_measurements_csv(path);
     ADD_FAILURE() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":2 column tension_N = abc"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(":2 column tension_N = abc"), std::string::npos)
+        << e.what();
   }
   std::remove(path.c_str());
   EXPECT_THROW((void)read_measurements_csv(path), InputError);

@@ -1,4 +1,5 @@
-// Unit tests of the TCA model ([Pawlowski2019] Section II; docs/conventions.md "TCA model ([Pawlowski2019] Section II)").
+// Unit tests of the TCA model ([Pawlowski2019] Section II; docs/conventions.md "TCA model
+// ([Pawlowski2019] Section II)").
 #include "tca/tca.hpp"
 
 #include <gtest/gtest.h>
@@ -81,7 +82,9 @@ TEST(TcaEnergy, ComplementaryEnergyGivesEq3AndTwiceEq4) {
     for (const double alpha_deg : {5.0, 12.79, 30.0, 60.0}) {
       for (const double t_degC : {25.0, 90.0, 160.0}) {
         const double a = units::deg_to_rad(alpha_deg), t = K(t_degC);
-        const auto U = [&](double F, double tau) { return complementary_energy(cast, a, t, F, tau); };
+        const auto U = [&](double F, double tau) {
+          return complementary_energy(cast, a, t, F, tau);
+        };
         const double f11 = (U(F0 + hF, tau0) - 2.0 * U(F0, tau0) + U(F0 - hF, tau0)) / (hF * hF);
         const double f12 = (U(F0 + hF, tau0 + htau) - U(F0 + hF, tau0 - htau) -
                             U(F0 - hF, tau0 + htau) + U(F0 - hF, tau0 - htau)) /
@@ -99,7 +102,8 @@ TEST(TcaEnergy, ComplementaryEnergyGivesEq3AndTwiceEq4) {
 }
 
 TEST(TcaConversions, Fig5GeometryGivesPhysicsNotesValues) {
-  // docs/conventions.md "TCA data of the paper's experiments" quotes alpha0, n and d0 to 3-4 digits.
+  // docs/conventions.md "TCA data of the paper's experiments" quotes alpha0, n and d0 to 3-4
+  // digits.
   const Tca t3(three_thread(), sun2022()), t4(four_thread(), sun2022());
   EXPECT_NEAR(units::rad_to_deg(t3.initial_pitch_angle_rad()), 12.79, 0.005);
   EXPECT_NEAR(t3.coil_count(), 154.3, 0.05);
@@ -144,12 +148,14 @@ TEST(TcaTangents, MaterialDerivativesMatchFiniteDifferences) {
     for (const double t_degC : {30.0, 80.0, 155.0}) {
       const double t = K(t_degC);
       const MaterialState s = m.at(t);
-      expect_rel_near(s.dE_dT_Pa_K + 1.0,
-                      central_difference([&](double x) { return m.at(x).youngs_modulus_Pa; }, t, h) + 1.0,
-                      kFdRelTol, m.name + " dE/dT");
-      expect_rel_near(s.dG_dT_Pa_K + 1.0,
-                      central_difference([&](double x) { return m.at(x).shear_modulus_Pa; }, t, h) + 1.0,
-                      kFdRelTol, m.name + " dG/dT");
+      expect_rel_near(
+          s.dE_dT_Pa_K + 1.0,
+          central_difference([&](double x) { return m.at(x).youngs_modulus_Pa; }, t, h) + 1.0,
+          kFdRelTol, m.name + " dE/dT");
+      expect_rel_near(
+          s.dG_dT_Pa_K + 1.0,
+          central_difference([&](double x) { return m.at(x).shear_modulus_Pa; }, t, h) + 1.0,
+          kFdRelTol, m.name + " dG/dT");
       expect_rel_near(s.dratio_dT_1_K,
                       central_difference([&](double x) { return m.at(x).diameter_ratio; }, t, h),
                       kFdRelTol, m.name + " d ratio/dT");
@@ -294,10 +300,10 @@ TEST(TcaClosedCoils, ZeroElongationBelowOnsetThenMonotone) {
 TEST(TcaClosedCoils, HeavierLoadGivesLaterOnset) {
   for (const F12Form form : {F12Form::kPaper, F12Form::kCastigliano}) {
     const Tca tca(four_thread(Kind::kExtension, form), sun2022());
-    const auto light = tca.onset_temperature(hanging_load_tension_N(units::g_to_kg(7.5)),
-                                             K(25.0), K(160.0));
-    const auto heavy = tca.onset_temperature(hanging_load_tension_N(units::g_to_kg(15.0)),
-                                             K(25.0), K(160.0));
+    const auto light =
+        tca.onset_temperature(hanging_load_tension_N(units::g_to_kg(7.5)), K(25.0), K(160.0));
+    const auto heavy =
+        tca.onset_temperature(hanging_load_tension_N(units::g_to_kg(15.0)), K(25.0), K(160.0));
     ASSERT_TRUE(light && heavy);
     EXPECT_GT(*heavy, *light);
   }
@@ -326,8 +332,8 @@ TEST(TcaSeries, EqualTemperaturesEqualTheSingleTca) {
     expect_rel_near(s.dF_dT_N_K[0] + s.dF_dT_N_K[1], one.dF_dT_N_K, 1e-9, "sum of dF/dT_k");
   }
   for (const double F : {-0.07, 0.0, 0.3}) {
-    expect_rel_near(series_elongation(tca, F, segs) + 1.0,
-                    tca.elongation(F, t).elongation_m + 1.0, kRoundOffRelTol, "series elongation");
+    expect_rel_near(series_elongation(tca, F, segs) + 1.0, tca.elongation(F, t).elongation_m + 1.0,
+                    kRoundOffRelTol, "series elongation");
   }
 }
 
@@ -372,14 +378,20 @@ TEST(TcaContact, ContactResidualDerivativesMatchCentralDifferencesOnEveryBranch)
       {"closed", fb - 0.05, 1e-4, {{1.0, t}}},
       {"below closed length", fb + 0.02, -2e-4, {{1.0, t}}},
       {"segments, both open", 0.02, 0.003, {{0.4, K(60.0)}, {0.6, K(120.0)}}},
-      {"segments, one closed", 0.5 * (tca.blocked_force(K(40.0)) + tca.blocked_force(K(140.0))),
-       0.002, {{0.5, K(40.0)}, {0.5, K(140.0)}}},
+      {"segments, one closed",
+       0.5 * (tca.blocked_force(K(40.0)) + tca.blocked_force(K(140.0))),
+       0.002,
+       {{0.5, K(40.0)}, {0.5, K(140.0)}}},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
     const ContactResidual r = contact_residual(tca, c.tension_N, c.elongation_m, c.segs);
-    const auto phi_F = [&](double F) { return contact_residual(tca, F, c.elongation_m, c.segs).phi_N; };
-    const auto phi_d = [&](double d) { return contact_residual(tca, c.tension_N, d, c.segs).phi_N; };
+    const auto phi_F = [&](double F) {
+      return contact_residual(tca, F, c.elongation_m, c.segs).phi_N;
+    };
+    const auto phi_d = [&](double d) {
+      return contact_residual(tca, c.tension_N, d, c.segs).phi_N;
+    };
     const auto phi_T = [&](double dT) {
       std::vector<Segment> s = c.segs;
       for (Segment& k : s) k.temperature_K += dT;
@@ -416,7 +428,8 @@ TEST(TcaContact, ResidualVanishesExactlyOnTheOpenLawAndOnTheClosedStrut) {
   // A contraction TCA has no coil contact: the free-coil law below L too.
   const Tca contraction(three_thread(Kind::kContraction), sun2022());
   const double dc = -0.002;
-  EXPECT_EQ(contact_residual(contraction, contraction.tension(dc, t).tension_N, dc, one).phi_N, 0.0);
+  EXPECT_EQ(contact_residual(contraction, contraction.tension(dc, t).tension_N, dc, one).phi_N,
+            0.0);
   EXPECT_FALSE(segment_contacts(contraction, -10.0, one)[0].coils_closed);
 }
 
@@ -466,9 +479,9 @@ TEST(TcaRejects, InvalidParametersNameTheKey) {
 TEST(TcaRejects, OutOfDomainStatesThrowDomainError) {
   const Tca tca(three_thread(), sun2022());
   EXPECT_THROW((void)tca.elongation(0.0, K(200.0)), DomainError);  // above valid range
-  EXPECT_THROW((void)tca.tension(0.0, K(10.0)), DomainError);       // below valid range
-  EXPECT_THROW((void)tca.tension(0.5, K(50.0)), DomainError);       // sin(alpha) > 1
-  EXPECT_THROW((void)tca.pitch_angle(-0.2), DomainError);           // sin(alpha) < 0
+  EXPECT_THROW((void)tca.tension(0.0, K(10.0)), DomainError);      // below valid range
+  EXPECT_THROW((void)tca.tension(0.5, K(50.0)), DomainError);      // sin(alpha) > 1
+  EXPECT_THROW((void)tca.pitch_angle(-0.2), DomainError);          // sin(alpha) < 0
   Material soft = softening();
   soft.youngs_modulus_Pa.coefficients = {1e9, -1e7};  // E = 0 at 100 degC
   const Tca weak(three_thread(), soft);

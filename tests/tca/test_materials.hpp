@@ -37,9 +37,9 @@ inline Material softening() {
   return m;
 }
 
-/// The 3-thread TCA of Fig. 5 (l and L as corrected in docs/conventions.md "TCA data of the paper's experiments").
-inline Parameters three_thread(Kind kind = Kind::kExtension,
-                               F12Form form = F12Form::kCastigliano) {
+/// The 3-thread TCA of Fig. 5 (l and L as corrected in docs/conventions.md "TCA data of the paper's
+/// experiments").
+inline Parameters three_thread(Kind kind = Kind::kExtension, F12Form form = F12Form::kCastigliano) {
   Parameters p;
   p.kind = kind;
   p.coiled_length_m = 0.110;
@@ -51,8 +51,7 @@ inline Parameters three_thread(Kind kind = Kind::kExtension,
 }
 
 /// The 4-thread TCA of Fig. 5.
-inline Parameters four_thread(Kind kind = Kind::kExtension,
-                              F12Form form = F12Form::kCastigliano) {
+inline Parameters four_thread(Kind kind = Kind::kExtension, F12Form form = F12Form::kCastigliano) {
   Parameters p;
   p.kind = kind;
   p.coiled_length_m = 0.110;

@@ -53,7 +53,8 @@ TEST(Gates, ACheckWhoseMeasuredTextNamesANonFiniteNumberFails) {
   EXPECT_FALSE(gates.check("inf in a sentence", true, "radius inf m at 25 degC", "finite"));
   EXPECT_FALSE(gates.check("upper case", true, "NaN", "< 1"));
   EXPECT_FALSE(gates.check("infinity", true, "-Infinity", "< 1"));
-  EXPECT_TRUE(gates.check("words containing inf or nan", true, "information: finance, nano 1.0e-3", "ok"));
+  EXPECT_TRUE(
+      gates.check("words containing inf or nan", true, "information: finance, nano 1.0e-3", "ok"));
   EXPECT_EQ(gates.failures(), 5);
 }
 

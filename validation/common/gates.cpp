@@ -27,7 +27,9 @@ std::string csv_field(const std::string& s) {
 /// non-finite numbers so): a measured text naming a non-finite number.
 bool names_non_finite(const std::string& text) {
   std::string word;
-  auto is_non_finite = [](const std::string& w) { return w == "nan" || w == "inf" || w == "infinity"; };
+  auto is_non_finite = [](const std::string& w) {
+    return w == "nan" || w == "inf" || w == "infinity";
+  };
   for (char c : text) {
     if (std::isalnum(static_cast<unsigned char>(c))) {
       word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -49,7 +51,8 @@ bool Gates::check(const std::string& name, bool passed, const std::string& measu
   return ok;
 }
 
-bool Gates::at_most(const std::string& name, double measured, double bound, const std::string& unit) {
+bool Gates::at_most(const std::string& name, double measured, double bound,
+                    const std::string& unit) {
   const std::string u = unit.empty() ? "" : " " + unit;
   const bool finite = std::isfinite(measured) && std::isfinite(bound);
   return check(name, finite && measured <= bound, fmt::format("{:.3e}{}", measured, u),
@@ -63,8 +66,9 @@ bool Gates::within(const std::string& name, double measured, double lo, double h
 }
 
 bool Gates::expect_count(const std::string& what, std::size_t ran, std::size_t expected) {
-  return check("cases run: " + what, expected > 0 && ran >= expected, fmt::format("{} of {}", ran, expected),
-               expected > 0 ? fmt::format(">= {} (declared)", expected) : std::string(">= 1 declared"));
+  return check(
+      "cases run: " + what, expected > 0 && ran >= expected, fmt::format("{} of {}", ran, expected),
+      expected > 0 ? fmt::format(">= {} (declared)", expected) : std::string(">= 1 declared"));
 }
 
 void Gates::not_run(const std::string& name, const std::string& reason) {

@@ -33,9 +33,11 @@ class Gates {
 
   /// Records a gate with a verdict computed by the caller; returns the recorded verdict:
   /// `passed`, and false when `measured` names a non-finite number (nan, inf, infinity).
-  bool check(const std::string& name, bool passed, const std::string& measured, const std::string& bound);
+  bool check(const std::string& name, bool passed, const std::string& measured,
+             const std::string& bound);
   /// measured <= bound; fails when either is not finite.
-  bool at_most(const std::string& name, double measured, double bound, const std::string& unit = "");
+  bool at_most(const std::string& name, double measured, double bound,
+               const std::string& unit = "");
   /// lo <= measured <= hi; fails when any of them is not finite.
   bool within(const std::string& name, double measured, double lo, double hi);
   /// ran >= expected: `what` (e.g. "scenarios") counts the cases the program declared it

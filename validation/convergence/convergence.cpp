@@ -36,16 +36,16 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "crosscheck/crosscheck.hpp"
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
-#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
@@ -71,46 +71,62 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "output folder for CSV files");
   app.add_option("--scenario-dir", scenario_dir, "folder with the suite's scenario files");
   app.add_option("--scenario", only, "restrict to these scenario names (repeatable)");
-  app.add_option("--order", only_order, "restrict to one order (1 or 2)")->check(CLI::IsMember({1, 2}));
+  app.add_option("--order", only_order, "restrict to one order (1 or 2)")
+      ->check(CLI::IsMember({1, 2}));
   app.add_option("--coarsest", coarsest, "override the coarsest element count (with --order)");
   app.add_option("--levels", levels, "override the number of levels (with --order)");
-  app.add_option("--reference-steps", ref_settings.steps, "RK4 steps of the shooting reference (multiple of 4)");
-  app.add_option("--reference-tolerance", ref_settings.tolerance, "Newton tolerance of the shooting reference (scaled residual)");
+  app.add_option("--reference-steps", ref_settings.steps,
+                 "RK4 steps of the shooting reference (multiple of 4)");
+  app.add_option("--reference-tolerance", ref_settings.tolerance,
+                 "Newton tolerance of the shooting reference (scaled residual)");
   CLI11_PARSE(app, argc, argv);
 
   try {
     const auto t_start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
-    auto progress = [&](const std::string& what) { fmt::print("  [{:7.2f} s] {}\n", elapsed(), what); std::fflush(stdout); };
+    auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    };
+    auto progress = [&](const std::string& what) {
+      fmt::print("  [{:7.2f} s] {}\n", elapsed(), what);
+      std::fflush(stdout);
+    };
     std::filesystem::create_directories(out_dir);
-    const std::vector<int> orders = only_order == 0 ? std::vector<int>{1, 2} : std::vector<int>{only_order};
+    const std::vector<int> orders =
+        only_order == 0 ? std::vector<int>{1, 2} : std::vector<int>{only_order};
 
     fmt::print("Step 1: suite ({})\n", scenario_dir);
     std::vector<std::pair<std::string, std::string>> skipped;
     const std::vector<tcasim::rod::RodModel> models = xc::load_suite(scenario_dir, only, skipped);
     const std::size_t expected = xc::expected_scenarios(
-        scenario_dir, only, only.empty() && scenario_dir == TCASIM_SCENARIO_DIR ? xc::kShippedSuiteScenarios : 1);
+        scenario_dir, only,
+        only.empty() && scenario_dir == TCASIM_SCENARIO_DIR ? xc::kShippedSuiteScenarios : 1);
 
-    fmt::print("Step 2: shooting references (RK4 {} and {} steps, CVODE rtol {:.0e})\n", ref_settings.steps,
-               ref_settings.steps / 2, ref_settings.cvode_rtol);
+    fmt::print("Step 2: shooting references (RK4 {} and {} steps, CVODE rtol {:.0e})\n",
+               ref_settings.steps, ref_settings.steps / 2, ref_settings.cvode_rtol);
     std::vector<xc::Reference> references;
     tcasim::rod::AtomicOutput ref_csv(out_dir + "/reference.csv", "reference csv");
-    ref_csv << "scenario,steps,tip_x_m,tip_y_m,tip_z_m,self_error_m,cvode_diff_m,rk4_time_s,cvode_time_s,converged\n";
+    ref_csv << "scenario,steps,tip_x_m,tip_y_m,tip_z_m,self_error_m,cvode_diff_m,rk4_time_s,cvode_"
+               "time_s,converged\n";
     for (const auto& model : models) {
       progress(model.name + ": reference");
       references.push_back(xc::shooting_reference(model, ref_settings));
       const auto& r = references.back();
       const auto& p = r.rk4.result.tip_position_W_m;
-      fmt::print("    tip ({:.12f}, {:.12f}, {:.12f}) m; self error {:.2e} m; CVODE - RK4 {:.2e} m; {:.3f} s\n", p.x(),
-                 p.y(), p.z(), r.self_error_m, r.cvode_difference_m, r.rk4.time_s);
-      fmt::print(ref_csv, "{},{},{:.15e},{:.15e},{:.15e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", model.name,
-                 ref_settings.steps, p.x(), p.y(), p.z(), r.self_error_m, r.cvode_difference_m, r.rk4.time_s,
-                 r.cvode ? r.cvode->time_s : 0.0, r.converged() ? 1 : 0);
+      fmt::print(
+          "    tip ({:.12f}, {:.12f}, {:.12f}) m; self error {:.2e} m; CVODE - RK4 {:.2e} m; "
+          "{:.3f} s\n",
+          p.x(), p.y(), p.z(), r.self_error_m, r.cvode_difference_m, r.rk4.time_s);
+      fmt::print(ref_csv, "{},{},{:.15e},{:.15e},{:.15e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n",
+                 model.name, ref_settings.steps, p.x(), p.y(), p.z(), r.self_error_m,
+                 r.cvode_difference_m, r.rk4.time_s, r.cvode ? r.cvode->time_s : 0.0,
+                 r.converged() ? 1 : 0);
     }
     ref_csv.commit();
 
-    fmt::print("Step 3: FE studies (Newton tolerances abs {:.0e}, rel {:.0e}, plus beam_fe's round-off floor)\n",
-               xc::tight_tolerances().tolerance_abs, xc::tight_tolerances().tolerance_rel);
+    fmt::print(
+        "Step 3: FE studies (Newton tolerances abs {:.0e}, rel {:.0e}, plus beam_fe's round-off "
+        "floor)\n",
+        xc::tight_tolerances().tolerance_abs, xc::tight_tolerances().tolerance_rel);
     tcasim::rod::AtomicOutput csv(out_dir + "/convergence.csv", "convergence csv");
     csv << xc::convergence_csv_header();
     struct Entry {
@@ -123,11 +139,15 @@ int main(int argc, char** argv) {
     for (std::size_t m = 0; m < models.size(); ++m) {
       for (int order : orders) {
         const xc::StudyLevels d = xc::study_levels(models[m].name, order, quick);
-        if (!d.reason.empty()) fmt::print("  {} order {}: levels {} x {}: {}\n", models[m].name, order, d.coarsest, d.count, d.reason);
+        if (!d.reason.empty())
+          fmt::print("  {} order {}: levels {} x {}: {}\n", models[m].name, order, d.coarsest,
+                     d.count, d.reason);
         xc::FeSettings tol = xc::tight_tolerances();
         tol.order = order;
-        const auto elements = xc::refinement_levels(coarsest > 0 ? coarsest : d.coarsest, levels > 0 ? levels : d.count);
-        entries.push_back({models[m].name, xc::convergence_study(models[m], references[m], tol, elements, progress),
+        const auto elements = xc::refinement_levels(coarsest > 0 ? coarsest : d.coarsest,
+                                                    levels > 0 ? levels : d.count);
+        entries.push_back({models[m].name,
+                           xc::convergence_study(models[m], references[m], tol, elements, progress),
                            references[m].self_error_m, references[m].converged()});
         csv << xc::convergence_csv_rows(models[m].name, entries.back().study);
       }
@@ -150,38 +170,41 @@ int main(int argc, char** argv) {
       int failed = 0;
       for (const auto& l : e.study.levels) failed += l.fe.converged ? 0 : 1;
       gates.check(label + ": every solve converges", failed == 0 && e.reference_converged,
-                  fmt::format("{} FE solves failed; reference {}", failed, e.reference_converged ? "ok" : "failed"), "0");
+                  fmt::format("{} FE solves failed; reference {}", failed,
+                              e.reference_converged ? "ok" : "failed"),
+                  "0");
       // Orders only over the asymptotic range: levels where refinement stopped helping at the
       // FE's round-off floor are reported, not gated (their "order" is round-off).
       const std::size_t asymptotic = static_cast<std::size_t>(e.study.asymptotic_levels);
       gates.check(label + ": at least two levels above the round-off floor", asymptotic >= 2,
-                  fmt::format("{} of {} levels", asymptotic, e.study.levels.size()),
-                  ">= 2");
+                  fmt::format("{} of {} levels", asymptotic, e.study.levels.size()), ">= 2");
       for (std::size_t i = 1; i < e.study.levels.size(); ++i) {
         const auto& l = e.study.levels[i];
-        const std::string what = fmt::format("{}: observed order vs shooting, {} -> {} elements", label,
-                                             e.study.levels[i - 1].elements, l.elements);
+        const std::string what = fmt::format("{}: observed order vs shooting, {} -> {} elements",
+                                             label, e.study.levels[i - 1].elements, l.elements);
         if (i < asymptotic) {
           gates.within(what, l.observed_order, b.lo(), b.hi());
         } else {
-          gates.check(what + " (round-off floor)", true,
-                      fmt::format("order {:.3f}, error {:.2e} m at the floor", l.observed_order, l.error_m),
-                      "not gated (refinement stopped helping)");
+          gates.check(
+              what + " (round-off floor)", true,
+              fmt::format("order {:.3f}, error {:.2e} m at the floor", l.observed_order, l.error_m),
+              "not gated (refinement stopped helping)");
         }
       }
       if (asymptotic >= 3) {
-        gates.within(label + ": Richardson order (three finest asymptotic levels)", e.study.richardson.order, b.lo(),
-                     b.hi());
+        gates.within(label + ": Richardson order (three finest asymptotic levels)",
+                     e.study.richardson.order, b.lo(), b.hi());
       } else {
         gates.check(label + ": Richardson order", true, "fewer than three asymptotic levels",
                     "not gated (round-off floor)");
       }
       const double finest = e.study.levels[std::max<std::size_t>(asymptotic, 1) - 1].error_m;
-      gates.at_most(label + ": reference error estimate vs 1 % of the finest FE error", e.reference_error_m,
-                    kReferenceFraction * finest, "m");
+      gates.at_most(label + ": reference error estimate vs 1 % of the finest FE error",
+                    e.reference_error_m, kReferenceFraction * finest, "m");
     }
     gates.write_csv(out_dir);
-    fmt::print("Wrote {0}/convergence.csv, {0}/reference.csv and gates.csv ({1:.1f} s)\n", out_dir, elapsed());
+    fmt::print("Wrote {0}/convergence.csv, {0}/reference.csv and gates.csv ({1:.1f} s)\n", out_dir,
+               elapsed());
     return gates.finish();
   } catch (const std::exception& e) {
     fmt::print(stderr, "validate_convergence: error: {}\n", e.what());

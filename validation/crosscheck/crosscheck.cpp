@@ -32,6 +32,8 @@
 //   validate_crosscheck --out-dir out/crosscheck           (full)
 //   validate_crosscheck --quick --out-dir /tmp/crosscheck  (fewer meshes)
 //   /usr/bin/python3 scripts/plot_crosscheck.py out/crosscheck  (crosscheck.png)
+#include "crosscheck/crosscheck.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -48,7 +50,6 @@
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "tca/tca.hpp"
-#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
@@ -76,14 +77,17 @@ constexpr double kRotationBound_rad = 1e-9;
 constexpr double kElongationOverOffset = kRotationBound_rad;
 
 /// The gated difference: tip or mid point, whichever is larger [m].
-double position_difference(const xc::CrossCheckRow& r) { return std::fmax(r.diff.tip_m, r.diff.mid_m); }
+double position_difference(const xc::CrossCheckRow& r) {
+  return std::fmax(r.diff.tip_m, r.diff.mid_m);
+}
 
 /// Largest distance of a string from the centerline, r_max [m] (straight offset or helix radius).
 double max_string_offset_m(const tcasim::rod::RodModel& model) {
   double r = 0.0;
   for (const auto& a : model.actuators) {
-    r = std::max(r, a.routing.type == tcasim::rod::Routing::Type::kHelix ? std::abs(a.routing.radius_m)
-                                                                         : a.routing.offset_m.norm());
+    r = std::max(r, a.routing.type == tcasim::rod::Routing::Type::kHelix
+                        ? std::abs(a.routing.radius_m)
+                        : a.routing.offset_m.norm());
   }
   return r;
 }
@@ -91,12 +95,14 @@ double max_string_offset_m(const tcasim::rod::RodModel& model) {
 /// Stiffest TCA string at the reference, max dF/d delta [N/m] (series law at the reference
 /// elongation and temperatures); 0 when every string is tension-driven (its tension is
 /// prescribed, so both solvers must give it exactly).
-double max_tca_stiffness_N_m(const tcasim::rod::RodModel& model, const tcasim::rod::Result& reference) {
+double max_tca_stiffness_N_m(const tcasim::rod::RodModel& model,
+                             const tcasim::rod::Result& reference) {
   double k = 0.0;
   for (std::size_t i = 0; i < model.actuators.size() && i < reference.actuators.size(); ++i) {
     const auto& d = model.actuators[i].drive;
     if (d.type != tcasim::rod::Drive::Type::kTca) continue;
-    k = std::max(k, std::abs(tcasim::tca::series_tension(*d.tca, reference.actuators[i].elongation_m, d.segments)
+    k = std::max(k, std::abs(tcasim::tca::series_tension(
+                                 *d.tca, reference.actuators[i].elongation_m, d.segments)
                                  .dF_ddelta_N_m));
   }
   return k;
@@ -122,13 +128,17 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "output folder for CSV files");
   app.add_option("--scenario-dir", scenario_dir, "folder with the suite's scenario files");
   app.add_option("--scenario", only, "restrict to these scenario names (repeatable)");
-  app.add_option("--reference-steps", ref_settings.steps, "RK4 steps of the shooting reference (multiple of 4)");
-  app.add_option("--reference-tolerance", ref_settings.tolerance, "Newton tolerance of the shooting reference (scaled residual)");
+  app.add_option("--reference-steps", ref_settings.steps,
+                 "RK4 steps of the shooting reference (multiple of 4)");
+  app.add_option("--reference-tolerance", ref_settings.tolerance,
+                 "Newton tolerance of the shooting reference (scaled residual)");
   CLI11_PARSE(app, argc, argv);
 
   try {
     const auto t_start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
+    auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    };
     auto progress = [&](const std::string& what) {
       fmt::print("  [{:7.2f} s] {}\n", elapsed(), what);
       std::fflush(stdout);
@@ -140,10 +150,11 @@ int main(int argc, char** argv) {
     std::vector<std::pair<std::string, std::string>> skipped;
     const std::vector<tcasim::rod::RodModel> models = xc::load_suite(scenario_dir, only, skipped);
     const std::size_t expected = xc::expected_scenarios(
-        scenario_dir, only, only.empty() && scenario_dir == TCASIM_SCENARIO_DIR ? xc::kShippedSuiteScenarios : 1);
+        scenario_dir, only,
+        only.empty() && scenario_dir == TCASIM_SCENARIO_DIR ? xc::kShippedSuiteScenarios : 1);
 
-    fmt::print("Step 2: reference (RK4 {} / {} steps, CVODE rtol {:.0e}) and FE meshes\n", ref_settings.steps,
-               ref_settings.steps / 2, ref_settings.cvode_rtol);
+    fmt::print("Step 2: reference (RK4 {} / {} steps, CVODE rtol {:.0e}) and FE meshes\n",
+               ref_settings.steps, ref_settings.steps / 2, ref_settings.cvode_rtol);
     tcasim::rod::AtomicOutput csv(out_dir + "/crosscheck.csv", "crosscheck csv");
     csv << xc::crosscheck_csv_header();
     struct Entry {
@@ -156,25 +167,31 @@ int main(int argc, char** argv) {
       progress(model.name + ": shooting reference");
       Entry e{&model, xc::shooting_reference(model, ref_settings), {}};
       e.rows = xc::cross_check(model, e.reference, meshes, progress);
-      for (const auto& row : e.rows) csv << xc::crosscheck_csv_row(row, e.reference, ref_settings.steps);
+      for (const auto& row : e.rows)
+        csv << xc::crosscheck_csv_row(row, e.reference, ref_settings.steps);
       entries.push_back(std::move(e));
     }
     csv.commit();
 
     fmt::print("Step 3: table (FE - shooting; reference error = |p(N) - p(N/2)| / 15)\n");
     for (const auto& e : entries) {
-      fmt::print("{}: L = {} m, reference error {:.2e} m, CVODE - RK4 {:.2e} m, shooting {:.3f} s\n", e.model->name,
-                 e.model->length_m, e.reference.self_error_m, e.reference.cvode_difference_m, e.reference.rk4.time_s);
+      fmt::print(
+          "{}: L = {} m, reference error {:.2e} m, CVODE - RK4 {:.2e} m, shooting {:.3f} s\n",
+          e.model->name, e.model->length_m, e.reference.self_error_m,
+          e.reference.cvode_difference_m, e.reference.rk4.time_s);
       fmt::print("  largest reference tension {:.4e} N, largest reference elongation {:.4e} m\n",
                  max_abs(e.reference.rk4.result, &tcasim::rod::ActuatorResult::tension_N),
                  max_abs(e.reference.rk4.result, &tcasim::rod::ActuatorResult::elongation_m));
-      fmt::print("  {:>5} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>8}\n", "order", "elements",
-                 "tip [m]", "tip / L", "mid [m]", "rot [rad]", "tension [N]", "elong. [m]", "react. [N]", "fe [s]");
+      fmt::print("  {:>5} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>8}\n", "order",
+                 "elements", "tip [m]", "tip / L", "mid [m]", "rot [rad]", "tension [N]",
+                 "elong. [m]", "react. [N]", "fe [s]");
       for (const auto& r : e.rows) {
-        fmt::print("  {:>5} {:>8} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>8.3f}{}\n",
-                   r.order, r.elements, r.diff.tip_m, r.diff.tip_m / r.length_m, r.diff.mid_m, r.diff.rotation_rad,
-                   r.diff.max_tension_N, r.diff.max_elongation_m, r.diff.reaction_N, r.fe_time_s,
-                   r.converged ? "" : "  NOT CONVERGED");
+        fmt::print(
+            "  {:>5} {:>8} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} "
+            "{:>8.3f}{}\n",
+            r.order, r.elements, r.diff.tip_m, r.diff.tip_m / r.length_m, r.diff.mid_m,
+            r.diff.rotation_rad, r.diff.max_tension_N, r.diff.max_elongation_m, r.diff.reaction_N,
+            r.fe_time_s, r.converged ? "" : "  NOT CONVERGED");
       }
     }
 
@@ -189,38 +206,48 @@ int main(int argc, char** argv) {
       int failed = 0;
       for (const auto& r : e.rows) failed += r.converged ? 0 : 1;
       gates.check(name + ": every solve converges", failed == 0 && e.reference.converged(),
-                  fmt::format("{} FE solves failed; reference {}", failed, e.reference.converged() ? "ok" : "failed"),
+                  fmt::format("{} FE solves failed; reference {}", failed,
+                              e.reference.converged() ? "ok" : "failed"),
                   "0");
       std::vector<const xc::CrossCheckRow*> quadratic;
       for (const auto& r : e.rows) {
         if (r.order == 2) quadratic.push_back(&r);
       }
       const auto* finest = quadratic.back();
-      gates.at_most(fmt::format("{}: FE (order 2, {} elements) vs shooting, max(tip, mid) difference / L", name,
-                                finest->elements),
-                    position_difference(*finest) / L, kAgreementOverL);
-      gates.at_most(fmt::format("{}: FE (order 2, {} elements) vs shooting, tip rotation difference", name,
-                                finest->elements),
-                    finest->diff.rotation_rad, kRotationBound_rad, "rad");
+      gates.at_most(
+          fmt::format("{}: FE (order 2, {} elements) vs shooting, max(tip, mid) difference / L",
+                      name, finest->elements),
+          position_difference(*finest) / L, kAgreementOverL);
+      gates.at_most(
+          fmt::format("{}: FE (order 2, {} elements) vs shooting, tip rotation difference", name,
+                      finest->elements),
+          finest->diff.rotation_rad, kRotationBound_rad, "rad");
       if (!e.model->actuators.empty()) {
         // Bounds from the physics of the strings (constants above): de <= r_max dtheta, dT <= k de.
         const double r_max = max_string_offset_m(*e.model);
         const double elongation_bound_m = kElongationOverOffset * r_max;
         const double k_max = max_tca_stiffness_N_m(*e.model, e.reference.rk4.result);
-        gates.at_most(fmt::format("{}: FE (order 2, {} elements) vs shooting, max string elongation difference "
-                                  "(bound {:.0e} r_max, r_max = {:.3e} m)",
-                                  name, finest->elements, kElongationOverOffset, r_max),
-                      finest->diff.max_elongation_m, elongation_bound_m, "m");
-        gates.at_most(fmt::format("{}: FE (order 2, {} elements) vs shooting, max string tension difference "
-                                  "(bound k_max x elongation bound, k_max = {:.4g} N/m)",
-                                  name, finest->elements, k_max),
-                      finest->diff.max_tension_N, k_max * elongation_bound_m, "N");
+        gates.at_most(
+            fmt::format(
+                "{}: FE (order 2, {} elements) vs shooting, max string elongation difference "
+                "(bound {:.0e} r_max, r_max = {:.3e} m)",
+                name, finest->elements, kElongationOverOffset, r_max),
+            finest->diff.max_elongation_m, elongation_bound_m, "m");
+        gates.at_most(
+            fmt::format("{}: FE (order 2, {} elements) vs shooting, max string tension difference "
+                        "(bound k_max x elongation bound, k_max = {:.4g} N/m)",
+                        name, finest->elements, k_max),
+            finest->diff.max_tension_N, k_max * elongation_bound_m, "N");
       }
-      gates.at_most(name + ": reference error estimate / L", e.reference.self_error_m / L, kReferenceOverL);
-      const double reduction = position_difference(*quadratic.front()) / position_difference(*finest);
-      gates.check(name + ": difference shrinks under refinement (order 2)", reduction >= kMinReduction,
-                  fmt::format("{:.2e} m ({} el.) -> {:.2e} m ({} el.): {:.0f}x", position_difference(*quadratic.front()),
-                              quadratic.front()->elements, position_difference(*finest), finest->elements, reduction),
+      gates.at_most(name + ": reference error estimate / L", e.reference.self_error_m / L,
+                    kReferenceOverL);
+      const double reduction =
+          position_difference(*quadratic.front()) / position_difference(*finest);
+      gates.check(name + ": difference shrinks under refinement (order 2)",
+                  reduction >= kMinReduction,
+                  fmt::format("{:.2e} m ({} el.) -> {:.2e} m ({} el.): {:.0f}x",
+                              position_difference(*quadratic.front()), quadratic.front()->elements,
+                              position_difference(*finest), finest->elements, reduction),
                   fmt::format(">= {:.0f}x", kMinReduction));
     }
     gates.write_csv(out_dir);

@@ -1,14 +1,13 @@
 // validate_fig5_tca: elongation-temperature curves of the two extension TCAs of Fig. 5.
 //
 // What it checks: the TCA model of [Pawlowski2019] Section II (Eqs. (1)-(5), closed coils,
-// docs/conventions.md "TCA data of the paper's experiments") on the experiment of Section V-A / Fig. 5: the 3-thread TCA
-// (l = 497 mm, L = 110 mm, D = 2 mm, N = 300) and the 4-thread TCA (l = 471 mm, L = 110 mm,
-// D = 2.13 mm, N = 259), hanging loads 5 g + 2.5 g and 10 g + 5 g friction equivalents
-// (F = -m g), 25..160 degC in steps of 5 degC, for every shipped material and both
-// Eq. (4) factors (paper 8, castigliano 16).
-// Reference: [Pawlowski2019] Fig. 5 (measured curves, given only as a plot; the paper's
-// material values are not available, so no numeric comparison with the figure is gated).
-// Gate (only what the physics guarantees):
+// docs/conventions.md "TCA data of the paper's experiments") on the experiment of Section V-A /
+// Fig. 5: the 3-thread TCA (l = 497 mm, L = 110 mm, D = 2 mm, N = 300) and the 4-thread TCA (l =
+// 471 mm, L = 110 mm, D = 2.13 mm, N = 259), hanging loads 5 g + 2.5 g and 10 g + 5 g friction
+// equivalents (F = -m g), 25..160 degC in steps of 5 degC, for every shipped material and both Eq.
+// (4) factors (paper 8, castigliano 16). Reference: [Pawlowski2019] Fig. 5 (measured curves, given
+// only as a plot; the paper's material values are not available, so no numeric comparison with the
+// figure is gated). Gate (only what the physics guarantees):
 //   1. the elongation is exactly 0 (coils closed) at every temperature below the onset and
 //      positive above it;
 //   2. the elongation is non-decreasing with temperature;
@@ -72,10 +71,10 @@ std::string case_name(const Case& c) {
 /// Runs `tcasim tca` and parses its CSV (elongation per temperature).
 std::vector<double> run_cli(const std::string& exe, const std::string& file, const Case& c,
                             const std::string& grid) {
-  const std::string cmd =
-      fmt::format("'{}' tca '{}' --tca {} --load-g {} --material {} --f12-form {} "
-                  "--temperatures-degC {}",
-                  exe, file, c.tca_id, c.load_g, c.material, tca::to_string(c.form), grid);
+  const std::string cmd = fmt::format(
+      "'{}' tca '{}' --tca {} --load-g {} --material {} --f12-form {} "
+      "--temperatures-degC {}",
+      exe, file, c.tca_id, c.load_g, c.material, tca::to_string(c.form), grid);
   FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("cannot run " + cmd);
   std::string text;
@@ -141,8 +140,7 @@ int run(int argc, char** argv) {
 
   fmt::print("Step 3: elongation curves, {}..{} degC step {} degC\n", t_lo_degC, t_hi_degC,
              step_degC);
-  const std::vector<double> temps_degC =
-      inclusive_grid(t_lo_degC, t_hi_degC, step_degC, "grid");
+  const std::vector<double> temps_degC = inclusive_grid(t_lo_degC, t_hi_degC, step_degC, "grid");
   std::vector<double> temps_K;
   for (const double t : temps_degC) temps_K.push_back(units::degC_to_K(t));
   std::vector<Case> cases;
@@ -154,7 +152,12 @@ int run(int argc, char** argv) {
           p.f12_form = form;
           const tca::Tca model(p, mats.at(name));
           const double F = tca::hanging_load_tension_N(units::g_to_kg(load_g));
-          Case c{id, load_g, name, form, temps_degC, tca::elongation_curve(model, F, temps_K),
+          Case c{id,
+                 load_g,
+                 name,
+                 form,
+                 temps_degC,
+                 tca::elongation_curve(model, F, temps_K),
                  model.onset_temperature(F, temps_K.front(), temps_K.back())};
           cases.push_back(std::move(c));
         }
@@ -174,15 +177,16 @@ int run(int argc, char** argv) {
       if (below && !(p.elongation_m == 0.0 && p.coils_closed)) {
         ++closed_violations;
         worst_below_m = std::max(worst_below_m, std::abs(p.elongation_m));
-      } else if (!below && p.temperature_K > *c.onset_K && !(p.elongation_m > 0.0 && !p.coils_closed)) {
+      } else if (!below && p.temperature_K > *c.onset_K &&
+                 !(p.elongation_m > 0.0 && !p.coils_closed)) {
         ++open_violations;
       }
       if (i > 0 && p.elongation_m < c.curve[i - 1].elongation_m) ++decreases;
     }
     gates.check(case_name(c) + ": zero elongation below the onset, positive above",
                 closed_violations == 0 && open_violations == 0,
-                fmt::format("{} points wrong below (max |delta| {:.3e} m), {} above", closed_violations,
-                            worst_below_m, open_violations),
+                fmt::format("{} points wrong below (max |delta| {:.3e} m), {} above",
+                            closed_violations, worst_below_m, open_violations),
                 "0 points");
     gates.check(case_name(c) + ": elongation non-decreasing with temperature", decreases == 0,
                 fmt::format("{} decreases", decreases), "0 decreases");
@@ -195,10 +199,12 @@ int run(int argc, char** argv) {
       }
       const double inf = std::numeric_limits<double>::infinity();
       const double t_heavy = heavy.onset_K.value_or(inf), t_light = light.onset_K.value_or(inf);
-      gates.check(fmt::format("{}: onset not earlier than with {} g", case_name(heavy), light.load_g),
-                  t_heavy >= t_light,
-                  fmt::format("{:.2f} degC vs {:.2f} degC", units::K_to_degC(t_heavy), units::K_to_degC(t_light)),
-                  "heavier >= lighter");
+      gates.check(
+          fmt::format("{}: onset not earlier than with {} g", case_name(heavy), light.load_g),
+          t_heavy >= t_light,
+          fmt::format("{:.2f} degC vs {:.2f} degC", units::K_to_degC(t_heavy),
+                      units::K_to_degC(t_light)),
+          "heavier >= lighter");
     }
   }
   if (!tcasim_exe.empty()) {
@@ -211,8 +217,9 @@ int run(int argc, char** argv) {
         const double rel = ref == 0.0 ? std::abs(cli[i]) : std::abs(cli[i] - ref) / std::abs(ref);
         worst = std::max(worst, rel);
       }
-      gates.at_most(case_name(c) + ": `tcasim tca` reproduces the library curve (relative difference)", worst,
-                    kCliRelTol);
+      gates.at_most(
+          case_name(c) + ": `tcasim tca` reproduces the library curve (relative difference)", worst,
+          kCliRelTol);
     }
   }
 
@@ -231,8 +238,7 @@ int run(int argc, char** argv) {
                  tca::to_string(c.form), c.temperatures_degC[i], c.curve[i].elongation_m,
                  units::rad_to_deg(c.curve[i].pitch_angle_rad), c.curve[i].coils_closed ? 1 : 0);
     }
-    fmt::print(table, "{},{},{},{},{},{}\n", c.tca_id, c.load_g, c.material,
-               tca::to_string(c.form),
+    fmt::print(table, "{},{},{},{},{},{}\n", c.tca_id, c.load_g, c.material, tca::to_string(c.form),
                c.onset_K ? fmt::format("{:.4f}", units::K_to_degC(*c.onset_K)) : "nan",
                c.curve.back().elongation_m);
   }
@@ -240,8 +246,8 @@ int run(int argc, char** argv) {
   table.commit();
 
   fmt::print("Step 6: table\n");
-  fmt::print("{:<13} {:>6} {:<25} {:<12} {:>10} {:>14}\n", "tca", "load_g", "material",
-             "f12_form", "onset_degC", "delta_160_mm");
+  fmt::print("{:<13} {:>6} {:<25} {:<12} {:>10} {:>14}\n", "tca", "load_g", "material", "f12_form",
+             "onset_degC", "delta_160_mm");
   for (const Case& c : cases) {
     fmt::print("{:<13} {:>6} {:<25} {:<12} {:>10} {:>14.3f}\n", c.tca_id, c.load_g, c.material,
                tca::to_string(c.form),

@@ -59,14 +59,16 @@ struct Point {
 };
 
 /// The model with every TCA rebuilt on a shipped material (parameters unchanged).
-tcasim::rod::RodModel with_material(const tcasim::rod::RodModel& model, const std::string& material) {
+tcasim::rod::RodModel with_material(const tcasim::rod::RodModel& model,
+                                    const std::string& material) {
   return tcasim::rod::with_tca_material(model, tcasim::rod::load_material(material, "material"));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Paper Fig. 6: bending radius vs temperature of the circular and square manipulators"};
+  CLI::App app{
+      "Paper Fig. 6: bending radius vs temperature of the circular and square manipulators"};
   bool quick = false;
   std::string out_dir = "fig6-out";
   std::string scenario_dir = TCASIM_SCENARIO_DIR;
@@ -81,8 +83,8 @@ int main(int argc, char** argv) {
     const std::vector<std::string> manipulators = {"circular-manipulator", "square-manipulator"};
     const std::vector<std::string> materials = {"silver-nylon-sun2022", "silver-nylon-castigliano"};
 
-    fmt::print("Step 1: sweep 25..150 degC (step {} degC), {} manipulators x {} materials\n", step_degC,
-               manipulators.size(), materials.size());
+    fmt::print("Step 1: sweep 25..150 degC (step {} degC), {} manipulators x {} materials\n",
+               step_degC, manipulators.size(), materials.size());
     tcasim::rod::AtomicOutput csv(out_dir + "/fig6_radius.csv", "fig6 csv");
     csv << "manipulator,material,temperature_degC,converged,iterations,bending_radius_m,tip_x_m,"
            "tip_y_m,tip_z_m,tension_N,elongation_m\n";
@@ -90,7 +92,8 @@ int main(int argc, char** argv) {
     std::map<std::pair<std::string, std::string>, tcasim::rod::Result> reference_results;
     std::map<std::string, double> reference_curvature_1_m;
     for (const auto& name : manipulators) {
-      const tcasim::rod::RodModel base = tcasim::rod::read_scenario(scenario_dir + "/" + name + ".json");
+      const tcasim::rod::RodModel base =
+          tcasim::rod::read_scenario(scenario_dir + "/" + name + ".json");
       reference_curvature_1_m[name] = base.reference_curvature_B_1_m.norm();
       for (const auto& material : materials) {
         const tcasim::rod::RodModel model = with_material(base, material);
@@ -121,11 +124,12 @@ int main(int argc, char** argv) {
           const auto summary = solver.solve(actuation, solution);
           curve.push_back({t, solver.make_result(actuation, solution, summary)});
           const auto& r = curve.back().result;
-          fmt::print(csv, "{},{},{},{},{},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n", name, material, t,
-                     r.converged ? 1 : 0, r.iterations,
-                     r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string(),
-                     r.tip_position_W_m.x(), r.tip_position_W_m.y(), r.tip_position_W_m.z(),
-                     r.actuators.at(0).tension_N, r.actuators.at(0).elongation_m);
+          fmt::print(
+              csv, "{},{},{},{},{},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n", name, material, t,
+              r.converged ? 1 : 0, r.iterations,
+              r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string(),
+              r.tip_position_W_m.x(), r.tip_position_W_m.y(), r.tip_position_W_m.z(),
+              r.actuators.at(0).tension_N, r.actuators.at(0).elongation_m);
         }
       }
     }
@@ -142,7 +146,9 @@ int main(int argc, char** argv) {
         std::string cell = "?";
         for (const auto& p : curve) {
           if (std::abs(p.temperature_degC - t) < 1e-9) {
-            cell = p.result.bending_radius_m ? fmt::format("{:.2f}", 1e3 * *p.result.bending_radius_m) : "-";
+            cell = p.result.bending_radius_m
+                       ? fmt::format("{:.2f}", 1e3 * *p.result.bending_radius_m)
+                       : "-";
           }
         }
         fmt::print(" {:>8}", cell);
@@ -154,7 +160,8 @@ int main(int argc, char** argv) {
     tcasim::validation::Gates gates("validate_fig6_radius");
     // Declared cases: every manipulator x material curve, each on the whole 25..150 degC grid.
     const auto grid_points = static_cast<std::size_t>(std::lround(125.0 / step_degC)) + 1;
-    gates.expect_count("curves (manipulator x material)", curves.size(), manipulators.size() * materials.size());
+    gates.expect_count("curves (manipulator x material)", curves.size(),
+                       manipulators.size() * materials.size());
     for (const auto& [key, curve] : curves) {
       const std::string label = key.first + " / " + key.second;
       gates.expect_count(label + " temperatures", curve.size(), grid_points);
@@ -166,7 +173,8 @@ int main(int argc, char** argv) {
       const auto& ref = reference_results.at(key);
       const double ref_tension = ref.actuators.at(0).tension_N;
       gates.check(label + ": no tension at 25 degC without gravity",
-                  ref.converged && std::abs(ref_tension) <= kZeroTension_N, fmt::format("|T| = {:.3e} N", ref_tension),
+                  ref.converged && std::abs(ref_tension) <= kZeroTension_N,
+                  fmt::format("|T| = {:.3e} N", ref_tension),
                   fmt::format("<= {:.0e} N", kZeroTension_N));
       if (circular) {
         // Inner edge of an arc of radius R at half width h toward its center: radius R - h.
@@ -175,16 +183,20 @@ int main(int argc, char** argv) {
         const double got = ref.bending_radius_m.value_or(0.0);
         gates.check(label + ": unloaded reference shape, radius vs closed form 1/|omega*| - D/2",
                     std::abs(got - expected) <= kRadiusRelTol * expected,
-                    fmt::format("relative difference {:.3e} ({:.9f} m vs {:.9f} m)", std::abs(got - expected) / expected,
-                                got, expected),
+                    fmt::format("relative difference {:.3e} ({:.9f} m vs {:.9f} m)",
+                                std::abs(got - expected) / expected, got, expected),
                     fmt::format("<= {:.0e}", kRadiusRelTol));
         const auto& first = curve.front().result;
-        gates.check(label + ": starts bent at 25 degC with gravity", first.bending_radius_m.has_value(),
-                    first.bending_radius_m ? fmt::format("radius {:.2f} mm", 1e3 * *first.bending_radius_m) : "straight",
-                    "a finite radius");
+        gates.check(
+            label + ": starts bent at 25 degC with gravity", first.bending_radius_m.has_value(),
+            first.bending_radius_m ? fmt::format("radius {:.2f} mm", 1e3 * *first.bending_radius_m)
+                                   : "straight",
+            "a finite radius");
       } else {
-        gates.check(label + ": straight at 25 degC without gravity", !ref.bending_radius_m.has_value(),
-                    ref.bending_radius_m ? fmt::format("radius {:.3e} m", *ref.bending_radius_m) : "straight",
+        gates.check(label + ": straight at 25 degC without gravity",
+                    !ref.bending_radius_m.has_value(),
+                    ref.bending_radius_m ? fmt::format("radius {:.3e} m", *ref.bending_radius_m)
+                                         : "straight",
                     "no radius");
       }
       bool decreasing = true;
@@ -195,7 +207,8 @@ int main(int argc, char** argv) {
         if (k == 1 && !a && b) continue;  // a straight start: no radius to compare with
         if (!a || !b || !(*b < *a)) {
           decreasing = false;
-          where = fmt::format(" (not at {} -> {} degC)", curve[k - 1].temperature_degC, curve[k].temperature_degC);
+          where = fmt::format(" (not at {} -> {} degC)", curve[k - 1].temperature_degC,
+                              curve[k].temperature_degC);
           break;
         }
       }

@@ -45,13 +45,13 @@
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/output_file.hpp"
-#include "validation/common/gates.hpp"
 #include "rod/scenario.hpp"
+#include "validation/common/gates.hpp"
 
 namespace {
 
-using tcasim::units::degC_to_K;
 using Eigen::Vector3d;
+using tcasim::units::degC_to_K;
 
 /// At the hold temperature the pinned reaction is the solve residual x F_c (~1e-12 x 0.03 N)
 /// plus the free tip's own solve error: far below 1e-9 N.
@@ -63,11 +63,12 @@ struct Point {
   double t_degC;
   bool free_ok, held_ok;
   Vector3d free_tip, reaction;  // reaction: pinned tip
-  double lambda;                 // wire: reaction lambda v
+  double lambda;                // wire: reaction lambda v
   bool wire_ok;
 };
 
-tcasim::rod::RodModel with_material(const tcasim::rod::RodModel& model, const std::string& material) {
+tcasim::rod::RodModel with_material(const tcasim::rod::RodModel& model,
+                                    const std::string& material) {
   return tcasim::rod::with_tca_material(model, tcasim::rod::load_material(material, "material"));
 }
 
@@ -92,13 +93,15 @@ bool free_tip(const tcasim::rod::RodModel& free, double t_degC, Vector3d& tip) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Paper Fig. 8: tip force vs temperature of the 26 mm body held at a bent tip position"};
+  CLI::App app{
+      "Paper Fig. 8: tip force vs temperature of the 26 mm body held at a bent tip position"};
   bool quick = false;
   double hold_degC = 55.0;
   std::string out_dir = "fig8-out";
   std::string scenario_dir = TCASIM_SCENARIO_DIR;
   app.add_flag("--quick", quick, "coarse temperature grid (seconds)");
-  app.add_option("--hold-temperature-degC", hold_degC, "the tip is held where the free tip is at this temperature");
+  app.add_option("--hold-temperature-degC", hold_degC,
+                 "the tip is held where the free tip is at this temperature");
   app.add_option("--out-dir", out_dir, "output folder for CSV files");
   app.add_option("--scenario-dir", scenario_dir, "folder holding fig8-body.json");
   CLI11_PARSE(app, argc, argv);
@@ -111,13 +114,16 @@ int main(int argc, char** argv) {
   for (double t = 25.0; t <= 150.0 + 1e-9; t += step) temps.push_back(t);
   temps.push_back(hold_degC);
   std::sort(temps.begin(), temps.end());
-  temps.erase(std::unique(temps.begin(), temps.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+  temps.erase(std::unique(temps.begin(), temps.end(),
+                          [](double a, double b) { return std::abs(a - b) < 1e-9; }),
               temps.end());
 
   tcasim::rod::AtomicOutput csv(out_dir + "/fig8_force.csv", "fig8 csv");
-  fmt::print(csv, "material,temperature_degC,force_N,wire_taut,wire_lambda_N,pinned_force_N,"
-                  "pinned_reaction_x_N,pinned_reaction_y_N,pinned_reaction_z_N,free_tip_x_m,free_tip_y_m,"
-                  "free_tip_z_m,held_x_m,held_y_m,held_z_m,wire_x,wire_y,wire_z\n");
+  fmt::print(
+      csv,
+      "material,temperature_degC,force_N,wire_taut,wire_lambda_N,pinned_force_N,"
+      "pinned_reaction_x_N,pinned_reaction_y_N,pinned_reaction_z_N,free_tip_x_m,free_tip_y_m,"
+      "free_tip_z_m,held_x_m,held_y_m,held_z_m,wire_x,wire_y,wire_z\n");
   tcasim::validation::Gates gates("validate_fig8_force");
   for (const std::string material : {"silver-nylon-sun2022", "silver-nylon-castigliano"}) {
     tcasim::rod::RodModel free = with_material(file, material);
@@ -126,13 +132,16 @@ int main(int argc, char** argv) {
     Vector3d hold, tp, tm;
     if (!free_tip(free, hold_degC, hold) || !free_tip(free, hold_degC + kVelocityStep_K, tp) ||
         !free_tip(free, hold_degC - kVelocityStep_K, tm)) {
-      gates.check(material + ": free solve at the hold temperature", false, "not converged", "converges");
+      gates.check(material + ": free solve at the hold temperature", false, "not converged",
+                  "converges");
       continue;
     }
     const Vector3d v = (tp - tm).normalized();
-    fmt::print("[2] {}: held at [{:.6f}, {:.6f}, {:.6f}] mm; free tip moves along [{:.4f}, {:.4f}, {:.4f}]"
-               " there; file position differs by {:.2e} m\n", material, hold.x() * 1e3, hold.y() * 1e3,
-               hold.z() * 1e3, v.x(), v.y(), v.z(), (hold - file.tip_constraint->position_W_m).norm());
+    fmt::print(
+        "[2] {}: held at [{:.6f}, {:.6f}, {:.6f}] mm; free tip moves along [{:.4f}, {:.4f}, {:.4f}]"
+        " there; file position differs by {:.2e} m\n",
+        material, hold.x() * 1e3, hold.y() * 1e3, hold.z() * 1e3, v.x(), v.y(), v.z(),
+        (hold - file.tip_constraint->position_W_m).norm());
     tcasim::rod::RodModel held = free, wire = free;
     held.tip_constraint = tcasim::rod::TipConstraint{hold, std::nullopt};
     wire.tip_constraint = tcasim::rod::TipConstraint{hold, v};
@@ -148,8 +157,13 @@ int main(int argc, char** argv) {
       fa.set_temperature_K(0, degC_to_K(t));
       ha.set_temperature_K(0, degC_to_K(t));
       wa.set_temperature_K(0, degC_to_K(t));
-      Point p{t, fs.solve(fa, fsol).converged(), hs.solve(ha, hsol).converged(), Vector3d::Zero(),
-              Vector3d::Zero(), 0.0, ws.solve(wa, wsol).converged()};
+      Point p{t,
+              fs.solve(fa, fsol).converged(),
+              hs.solve(ha, hsol).converged(),
+              Vector3d::Zero(),
+              Vector3d::Zero(),
+              0.0,
+              ws.solve(wa, wsol).converged()};
       p.free_tip = fsol.tip_state.head<3>();
       p.reaction = hsol.unknowns.tail<3>();  // pinned reaction: the last 3 unknowns (shooting.hpp)
       p.lambda = wsol.unknowns[wsol.unknowns.size() - 1];  // normal-only: the last unknown
@@ -161,8 +175,8 @@ int main(int argc, char** argv) {
     int unconverged = 0, taut_below = 0, not_rising = 0;
     std::size_t below = 0, above = 0;  // points the slack and rising gates check
     double force_at_hold = 0.0;
-    fmt::print("    {:>8} {:>12} {:>6} {:>16} {:>14}\n", "T_degC", "wire_force_mN", "taut", "pinned_|R|_mN",
-               "pinned_R.v_mN");
+    fmt::print("    {:>8} {:>12} {:>6} {:>16} {:>14}\n", "T_degC", "wire_force_mN", "taut",
+               "pinned_|R|_mN", "pinned_R.v_mN");
     for (const Point& p : pts) {
       const bool at_hold = std::abs(p.t_degC - hold_degC) < 1e-9;
       const bool taut = !at_hold && p.lambda < 0.0;
@@ -183,22 +197,26 @@ int main(int argc, char** argv) {
         fmt::print("    {:>8.1f} {:>12.4f} {:>6} {:>16.4f} {:>14.4f}\n", p.t_degC, force * 1e3,
                    taut ? "yes" : "no", p.reaction.norm() * 1e3, p.reaction.dot(v) * 1e3);
       }
-      fmt::print(csv, "{},{},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
-                      "{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
-                 material, p.t_degC, force, taut ? 1 : 0, p.lambda, p.reaction.norm(), p.reaction.x(),
-                 p.reaction.y(), p.reaction.z(), p.free_tip.x(), p.free_tip.y(), p.free_tip.z(), hold.x(),
-                 hold.y(), hold.z(), v.x(), v.y(), v.z());
+      fmt::print(csv,
+                 "{},{},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
+                 "{:.12e},"
+                 "{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
+                 material, p.t_degC, force, taut ? 1 : 0, p.lambda, p.reaction.norm(),
+                 p.reaction.x(), p.reaction.y(), p.reaction.z(), p.free_tip.x(), p.free_tip.y(),
+                 p.free_tip.z(), hold.x(), hold.y(), hold.z(), v.x(), v.y(), v.z());
     }
     // The slack and rising gates need points on both sides of the hold temperature (rising: two).
     gates.expect_count(material + ": temperatures below the hold temperature", below, 1);
     gates.expect_count(material + ": temperatures above the hold temperature", above, 2);
-    gates.check(material + ": free, pinned and wire solves converge at every temperature", unconverged == 0,
-                fmt::format("{} of {} points failed", unconverged, pts.size()), "0");
+    gates.check(material + ": free, pinned and wire solves converge at every temperature",
+                unconverged == 0, fmt::format("{} of {} points failed", unconverged, pts.size()),
+                "0");
     gates.check(material + ": wire slack below the hold temperature", taut_below == 0,
                 fmt::format("{} taut points", taut_below), "0");
-    gates.at_most(material + ": wire force at the hold temperature", force_at_hold, kZeroForce_N, "N");
-    gates.check(material + ": wire force strictly rising above the hold temperature", not_rising == 0,
-                fmt::format("{} points not rising", not_rising), "0");
+    gates.at_most(material + ": wire force at the hold temperature", force_at_hold, kZeroForce_N,
+                  "N");
+    gates.check(material + ": wire force strictly rising above the hold temperature",
+                not_rising == 0, fmt::format("{} points not rising", not_rising), "0");
   }
   csv.commit();
   fmt::print("    CSV: {}/fig8_force.csv\n", out_dir);

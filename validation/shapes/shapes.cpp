@@ -3,8 +3,9 @@
 //
 // What it checks
 //   Every `tcasim.scenario/1` file in validation/scenarios/ (other schemas, e.g. the TCA
-//   files, are skipped with a printed reason) is solved with its own actuation. Its centerline and actuator paths are
-//   written as <name>.vtp (VTK PolyData) and <name>_shape.csv (scripts/plot_shapes.py).
+//   files, are skipped with a printed reason) is solved with its own actuation. Its centerline and
+//   actuator paths are written as <name>.vtp (VTK PolyData) and <name>_shape.csv
+//   (scripts/plot_shapes.py).
 // Reference
 //   Statics of the whole rod (docs/conventions.md, "Global equilibrium"): the base
 //   internal force n(0) and moment m(0) equal what gravity, the tip wrench, a tip
@@ -42,10 +43,10 @@
 #include <vector>
 
 #include "cosserat/shooting.hpp"
+#include "crosscheck/crosscheck.hpp"
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
-#include "crosscheck/crosscheck.hpp"
 #include "validation/common/gates.hpp"
 
 namespace {
@@ -80,9 +81,9 @@ struct Level {
 
 struct Row {
   std::string file, name, status, reason;
-  Level main;            ///< at N steps: shapes, table and gates 1-2
-  Level coarse, fine;    ///< at kOrderCoarseSteps and kOrderFineSteps: gate 3
-  Level equilibrium;     ///< at kEquilibriumSteps: gate 2
+  Level main;          ///< at N steps: shapes, table and gates 1-2
+  Level coarse, fine;  ///< at kOrderCoarseSteps and kOrderFineSteps: gate 3
+  Level equilibrium;   ///< at kEquilibriumSteps: gate 2
   double wall_time_s = 0.0;
 };
 
@@ -128,7 +129,8 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "output folder for the .vtp and CSV files");
   app.add_option("--scenario-dir", scenario_dir, "folder with the suite scenarios");
   int steps_option = 0;
-  app.add_option("--steps", steps_option, "RK4 steps (even; overrides the default of --quick or full)");
+  app.add_option("--steps", steps_option,
+                 "RK4 steps (even; overrides the default of --quick or full)");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -147,9 +149,12 @@ int main(int argc, char** argv) {
       std::ifstream in(path);
       const nlohmann::json doc = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
       const std::string schema =
-          doc.is_object() && doc.contains("schema") && doc["schema"].is_string() ? doc["schema"].get<std::string>() : "";
+          doc.is_object() && doc.contains("schema") && doc["schema"].is_string()
+              ? doc["schema"].get<std::string>()
+              : "";
       if (schema != "tcasim.scenario/1") {
-        fmt::print("  skip {}: schema \"{}\" is not tcasim.scenario/1\n", path.filename().string(), schema);
+        fmt::print("  skip {}: schema \"{}\" is not tcasim.scenario/1\n", path.filename().string(),
+                   schema);
         continue;
       }
       Row row;
@@ -163,13 +168,15 @@ int main(int argc, char** argv) {
     for (auto& row : rows) {
       const auto start = std::chrono::steady_clock::now();
       try {
-        const tcasim::rod::RodModel model = tcasim::rod::read_scenario(scenario_dir + "/" + row.file);
+        const tcasim::rod::RodModel model =
+            tcasim::rod::read_scenario(scenario_dir + "/" + row.file);
         row.name = model.name;
         row.main = solve_level(model, steps);
         row.status = tcasim::cosserat::to_string(row.main.summary.status);
         if (row.main.summary.converged()) {
           tcasim::rod::write_vtp(model, row.main.result, out_dir + "/" + row.name + ".vtp");
-          tcasim::rod::write_shape_csv(model, row.main.result, out_dir + "/" + row.name + "_shape.csv");
+          tcasim::rod::write_shape_csv(model, row.main.result,
+                                       out_dir + "/" + row.name + "_shape.csv");
         }
         row.equilibrium = solve_level(model, kEquilibriumSteps);
         row.coarse = solve_level(model, kOrderCoarseSteps);
@@ -179,39 +186,51 @@ int main(int argc, char** argv) {
         row.reason = e.what();
         fmt::print("  {}: error: {}\n", row.name, row.reason);
       }
-      row.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      row.wall_time_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
     fmt::print("Step 3: table (tip position [mm], imbalance relative to the load scale)\n");
-    fmt::print("{:<22} {:<12} {:>4} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n", "scenario", "status", "it",
-               "tip_x", "tip_y", "tip_z", "F_load[N]", "|dF|/F", "|dM|/FL", "time[s]");
+    fmt::print("{:<22} {:<12} {:>4} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n", "scenario",
+               "status", "it", "tip_x", "tip_y", "tip_z", "F_load[N]", "|dF|/F", "|dM|/FL",
+               "time[s]");
     tcasim::rod::AtomicOutput csv(out_dir + "/shapes_summary.csv", "shapes csv");
-    csv << "scenario,status,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m,load_scale_N,"
-           "force_imbalance_N,moment_imbalance_Nm,force_imbalance_rel,moment_imbalance_rel,imbalance_8_steps,"
+    csv << "scenario,status,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m,load_"
+           "scale_N,"
+           "force_imbalance_N,moment_imbalance_Nm,force_imbalance_rel,moment_imbalance_rel,"
+           "imbalance_8_steps,"
            "imbalance_16_steps,wall_time_s,base_x_m,base_y_m,"
-           "base_z_m,base_e1_x,base_e1_y,base_e1_z,base_e2_x,base_e2_y,base_e2_z,base_e3_x,base_e3_y,base_e3_z,reason\n";
+           "base_z_m,base_e1_x,base_e1_y,base_e1_z,base_e2_x,base_e2_y,base_e2_z,base_e3_x,base_e3_"
+           "y,base_e3_z,reason\n";
     for (const auto& row : rows) {
       const auto& r = row.main.result;
       const auto& tip = r.tip_position_W_m;
-      fmt::print("{:<22} {:<12} {:>4} {:>9.3f} {:>9.3f} {:>9.3f} {:>10.3e} {:>10.2e} {:>10.2e} {:>8.3f}\n", row.name,
-                 row.status, row.main.summary.iterations, 1e3 * tip.x(), 1e3 * tip.y(), 1e3 * tip.z(),
-                 row.main.load_scale_N, row.main.force_rel, row.main.moment_rel, row.wall_time_s);
+      fmt::print(
+          "{:<22} {:<12} {:>4} {:>9.3f} {:>9.3f} {:>9.3f} {:>10.3e} {:>10.2e} {:>10.2e} {:>8.3f}\n",
+          row.name, row.status, row.main.summary.iterations, 1e3 * tip.x(), 1e3 * tip.y(),
+          1e3 * tip.z(), row.main.load_scale_N, row.main.force_rel, row.main.moment_rel,
+          row.wall_time_s);
       // Base frame (the first centerline sample): position and body axes in the world frame.
       std::string base = ",,,,,,,,,,,";
       if (!r.centerline_R_WB.empty()) {
         const Eigen::Vector3d& p0 = r.centerline_p_W_m.front();
         const Eigen::Matrix3d& R0 = r.centerline_R_WB.front();
         base = fmt::format("{:.9e},{:.9e},{:.9e}", p0.x(), p0.y(), p0.z());
-        for (int j = 0; j < 3; ++j) base += fmt::format(",{:.9e},{:.9e},{:.9e}", R0(0, j), R0(1, j), R0(2, j));
+        for (int j = 0; j < 3; ++j)
+          base += fmt::format(",{:.9e},{:.9e},{:.9e}", R0(0, j), R0(1, j), R0(2, j));
       }
       std::string reason = row.reason;
       std::replace(reason.begin(), reason.end(), '"', '\'');
-      fmt::print(csv, "{},{},{},{:.3e},{:.12e},{:.12e},{:.12e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4f},{},\"{}\"\n",
-                 row.name, row.status, row.main.summary.iterations, row.main.summary.residual, tip.x(), tip.y(),
-                 tip.z(), r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string(),
+      fmt::print(csv,
+                 "{},{},{},{:.3e},{:.12e},{:.12e},{:.12e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:."
+                 "6e},{:.6e},{:.4f},{},\"{}\"\n",
+                 row.name, row.status, row.main.summary.iterations, row.main.summary.residual,
+                 tip.x(), tip.y(), tip.z(),
+                 r.bending_radius_m ? fmt::format("{:.12e}", *r.bending_radius_m) : std::string(),
                  row.main.load_scale_N, row.main.summary.force_imbalance_W_N.norm(),
-                 row.main.summary.moment_imbalance_W_Nm.norm(), row.main.force_rel, row.main.moment_rel,
-                 row.coarse.imbalance(), row.fine.imbalance(), row.wall_time_s, base, reason);
+                 row.main.summary.moment_imbalance_W_Nm.norm(), row.main.force_rel,
+                 row.main.moment_rel, row.coarse.imbalance(), row.fine.imbalance(), row.wall_time_s,
+                 base, reason);
     }
     csv.commit();
 
@@ -226,32 +245,40 @@ int main(int argc, char** argv) {
       ++solved;
       const bool converged = row.main.summary.converged() && row.equilibrium.summary.converged() &&
                              row.coarse.summary.converged() && row.fine.summary.converged();
-      gates.check(row.name + ": converges", converged,
-                  fmt::format("{} after {} iterations, residual {:.2e} ({} / {} at {} / {} steps)", row.status,
-                              row.main.summary.iterations, row.main.summary.residual,
-                              to_string(row.coarse.summary.status), to_string(row.fine.summary.status),
-                              kOrderCoarseSteps, kOrderFineSteps),
-                  "converged at every level");
-      gates.at_most(fmt::format("{}: global equilibrium max(|dn(0)| / F_load, |dm(0)| / (F_load L)) at {} steps",
-                                row.name, kEquilibriumSteps),
-                    row.equilibrium.imbalance(), kImbalanceFloor);
+      gates.check(
+          row.name + ": converges", converged,
+          fmt::format("{} after {} iterations, residual {:.2e} ({} / {} at {} / {} steps)",
+                      row.status, row.main.summary.iterations, row.main.summary.residual,
+                      to_string(row.coarse.summary.status), to_string(row.fine.summary.status),
+                      kOrderCoarseSteps, kOrderFineSteps),
+          "converged at every level");
+      gates.at_most(
+          fmt::format(
+              "{}: global equilibrium max(|dn(0)| / F_load, |dm(0)| / (F_load L)) at {} steps",
+              row.name, kEquilibriumSteps),
+          row.equilibrium.imbalance(), kImbalanceFloor);
       const double e_coarse = row.coarse.imbalance(), e_fine = row.fine.imbalance();
       if (e_fine >= kOrderMinImbalance) {
         const double order = std::log(e_coarse / e_fine) / std::log(2.0);
-        gates.within(fmt::format("{}: observed order of the imbalance, {} -> {} steps ({:.2e} -> {:.2e})", row.name,
-                                 kOrderCoarseSteps, kOrderFineSteps, e_coarse, e_fine),
-                     order, kExpectedOrder - kOrderHalfWidth, kExpectedOrder + kOrderHalfWidth);
+        gates.within(
+            fmt::format("{}: observed order of the imbalance, {} -> {} steps ({:.2e} -> {:.2e})",
+                        row.name, kOrderCoarseSteps, kOrderFineSteps, e_coarse, e_fine),
+            order, kExpectedOrder - kOrderHalfWidth, kExpectedOrder + kOrderHalfWidth);
       } else {
-        fmt::print("  (no order check for {}: imbalance {:.2e} at {} steps is below {:.0e}, near the Newton floor)\n",
-                   row.name, e_fine, kOrderFineSteps, kOrderMinImbalance);
+        fmt::print(
+            "  (no order check for {}: imbalance {:.2e} at {} steps is below {:.0e}, near the "
+            "Newton floor)\n",
+            row.name, e_fine, kOrderFineSteps, kOrderMinImbalance);
       }
     }
-    gates.expect_count("scenarios", solved,
-                       tcasim::crosscheck::expected_scenarios(
-                           scenario_dir, {},
-                           scenario_dir == TCASIM_SCENARIO_DIR ? tcasim::crosscheck::kShippedSuiteScenarios : 1));
+    gates.expect_count(
+        "scenarios", solved,
+        tcasim::crosscheck::expected_scenarios(
+            scenario_dir, {},
+            scenario_dir == TCASIM_SCENARIO_DIR ? tcasim::crosscheck::kShippedSuiteScenarios : 1));
     gates.write_csv(out_dir);
-    fmt::print("Wrote {}/shapes_summary.csv, <name>.vtp, <name>_shape.csv and gates.csv\n", out_dir);
+    fmt::print("Wrote {}/shapes_summary.csv, <name>.vtp, <name>_shape.csv and gates.csv\n",
+               out_dir);
     return gates.finish();
   } catch (const std::exception& e) {
     fmt::print(stderr, "validate_shapes: error: {}\n", e.what());

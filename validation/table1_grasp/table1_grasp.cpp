@@ -44,8 +44,8 @@
 #include "cosserat/inverse.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/output_file.hpp"
-#include "validation/common/gates.hpp"
 #include "rod/scenario.hpp"
+#include "validation/common/gates.hpp"
 
 namespace {
 
@@ -95,7 +95,8 @@ tcasim::cosserat::Options shooting_options() {
   return o;
 }
 
-tcasim::cosserat::GraspResult grasp(const tcasim::rod::RodModel& m, double mass_g, bool cross_check) {
+tcasim::cosserat::GraspResult grasp(const tcasim::rod::RodModel& m, double mass_g,
+                                    bool cross_check) {
   tcasim::cosserat::GraspOptions o;
   o.mass_kg = tcasim::units::g_to_kg(mass_g);
   o.friction = kFriction;
@@ -118,33 +119,46 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(out_dir);
 
   fmt::print("[1] scenario {}/gripper-finger.json\n", scenario_dir);
-  const tcasim::rod::RodModel base = tcasim::rod::read_scenario(scenario_dir + "/gripper-finger.json");
-  fmt::print("    assumed: TCA D = 1.7 mm, alpha0 = 15 deg, N = 76.4, coiled length = finger length "
-             "20 mm, U-shaped (count 2) at 3 mm; finger pointing down, gravity along it; contact "
-             "normal [-1, 0, 0] at the undeformed tip; mu = {}, n = {}\n", kFriction, kFingers);
+  const tcasim::rod::RodModel base =
+      tcasim::rod::read_scenario(scenario_dir + "/gripper-finger.json");
+  fmt::print(
+      "    assumed: TCA D = 1.7 mm, alpha0 = 15 deg, N = 76.4, coiled length = finger length "
+      "20 mm, U-shaped (count 2) at 3 mm; finger pointing down, gravity along it; contact "
+      "normal [-1, 0, 0] at the undeformed tip; mu = {}, n = {}\n",
+      kFriction, kFingers);
 
   const std::vector<std::string> materials = {"silver-nylon-sun2022", "silver-nylon-castigliano"};
   const std::vector<std::pair<std::string, tcasim::tca::F12Form>> forms = {
       {"paper", tcasim::tca::F12Form::kPaper}, {"castigliano", tcasim::tca::F12Form::kCastigliano}};
   std::vector<Row> rows;
   tcasim::validation::Gates gates("validate_table1_grasp");
-  auto run_set = [&](const tcasim::rod::RodModel& m, const std::string& material, const std::string& f12,
-                     const std::string& calibration) {
+  auto run_set = [&](const tcasim::rod::RodModel& m, const std::string& material,
+                     const std::string& f12, const std::string& calibration) {
     double previous = -1e300;
     for (int k = 0; k < 3; ++k) {
       const tcasim::cosserat::GraspResult g = grasp(m, kMasses_g[k], true);
-      Row r{material, f12, calibration, kMasses_g[k], g.required_force_N, K_to_degC(g.temperature_K),
-            g.root_temperature_K ? K_to_degC(*g.root_temperature_K) : std::numeric_limits<double>::quiet_NaN(),
-            std::abs(g.blocked_normal_force_N - g.required_force_N) / g.required_force_N, g.iterations,
-            g.converged, g.message};
-      const std::string label = fmt::format("{} {} {} {} g", material, f12, calibration, kMasses_g[k]);
+      Row r{material,
+            f12,
+            calibration,
+            kMasses_g[k],
+            g.required_force_N,
+            K_to_degC(g.temperature_K),
+            g.root_temperature_K ? K_to_degC(*g.root_temperature_K)
+                                 : std::numeric_limits<double>::quiet_NaN(),
+            std::abs(g.blocked_normal_force_N - g.required_force_N) / g.required_force_N,
+            g.iterations,
+            g.converged,
+            g.message};
+      const std::string label =
+          fmt::format("{} {} {} {} g", material, f12, calibration, kMasses_g[k]);
       gates.check(label + ": Eq. (43) iteration agrees with root finding",
                   g.converged && std::abs(r.t_degC - r.root_degC) <= kAgreement_degC,
-                  g.converged ? fmt::format("|T43 - Troot| = {:.3e} degC", std::abs(r.t_degC - r.root_degC))
-                              : "not converged: " + g.message,
+                  g.converged
+                      ? fmt::format("|T43 - Troot| = {:.3e} degC", std::abs(r.t_degC - r.root_degC))
+                      : "not converged: " + g.message,
                   fmt::format("<= {} degC", kAgreement_degC));
-      gates.at_most(label + ": blocked-tip force at that temperature (relative error)", r.force_rel_error,
-                    kForceRelative);
+      gates.at_most(label + ": blocked-tip force at that temperature (relative error)",
+                    r.force_rel_error, kForceRelative);
       if (k > 0) {
         gates.check(label + ": grasp temperature increases with mass", r.t_degC > previous,
                     fmt::format("{:.4f} degC after {:.4f} degC", r.t_degC, previous), "increasing");
@@ -156,25 +170,29 @@ int main(int argc, char** argv) {
 
   fmt::print("[2] grasp temperatures, published material sets\n");
   for (const auto& mat : materials) {
-    for (const auto& [fname, form] : forms) run_set(variant(base, mat, form, 1.0), mat, fname, "none");
+    for (const auto& [fname, form] : forms)
+      run_set(variant(base, mat, form, 1.0), mat, fname, "none");
   }
 
   if (!quick) {
     fmt::print("[3] calibration: thermal-expansion scale s fitted on 2 g -> {} degC (measured)\n",
                kMeasured_degC[1]);
     for (const auto& mat : materials) {
-      const tcasim::tca::F12Form form =
-          tcasim::rod::load_material(mat, "material").f12_form.value_or(tcasim::tca::F12Form::kCastigliano);
+      const tcasim::tca::F12Form form = tcasim::rod::load_material(mat, "material")
+                                            .f12_form.value_or(tcasim::tca::F12Form::kCastigliano);
       const std::string fname = form == tcasim::tca::F12Form::kPaper ? "paper" : "castigliano";
       // g(s) = T_2g(s) - 120 degC; unreachable (force not reached by the maximum) counts as +.
       auto g = [&](double s) {
-        const tcasim::cosserat::GraspResult r = grasp(variant(base, mat, form, s), kMasses_g[1], false);
+        const tcasim::cosserat::GraspResult r =
+            grasp(variant(base, mat, form, s), kMasses_g[1], false);
         return r.converged ? K_to_degC(r.temperature_K) - kMeasured_degC[1] : 1e3;
       };
       const double a = 1e-3, b = 1.0, ga = g(a), gb = g(b);
       if (!(ga > 0.0 && gb < 0.0)) {
-        fmt::print("    {}: no sign change of T_2g - 120 degC on s in [{}, {}] ({:.3g}, {:.3g}): not calibrated\n",
-                   mat, a, b, ga, gb);
+        fmt::print(
+            "    {}: no sign change of T_2g - 120 degC on s in [{}, {}] ({:.3g}, {:.3g}): not "
+            "calibrated\n",
+            mat, a, b, ga, gb);
         continue;
       }
       // Brent's method (g jumps where the grasp becomes unreachable; its bisection
@@ -192,30 +210,33 @@ int main(int argc, char** argv) {
 
   const std::string csv = out_dir + "/table1_grasp.csv";
   tcasim::rod::AtomicOutput os(csv, "table1 csv");
-  fmt::print(os, "material,f12_form,calibration,mass_g,required_force_N,temperature_degC,"
-                 "root_temperature_degC,measured_degC,paper_degC,blocked_force_rel_error,iterations,converged\n");
+  fmt::print(os,
+             "material,f12_form,calibration,mass_g,required_force_N,temperature_degC,"
+             "root_temperature_degC,measured_degC,paper_degC,blocked_force_rel_error,iterations,"
+             "converged\n");
   for (const Row& r : rows) {
     const int k = static_cast<int>(r.mass_g) - 1;
-    fmt::print(os, "{},{},{},{},{:.12e},{:.10f},{:.10f},{},{},{:.3e},{},{}\n", r.material, r.f12, r.calibration,
-               r.mass_g, r.force_N, r.t_degC, r.root_degC, kMeasured_degC[k], kPaper_degC[k],
-               r.force_rel_error, r.iterations, r.converged ? 1 : 0);
+    fmt::print(os, "{},{},{},{},{:.12e},{:.10f},{:.10f},{},{},{:.3e},{},{}\n", r.material, r.f12,
+               r.calibration, r.mass_g, r.force_N, r.t_degC, r.root_degC, kMeasured_degC[k],
+               kPaper_degC[k], r.force_rel_error, r.iterations, r.converged ? 1 : 0);
   }
   os.commit();
-  fmt::print("[4] table (temperatures in degC; measured 95/120/135, paper model 93.7/114.8/136.3)\n");
-  fmt::print("    {:<26} {:<12} {:<26} {:>8} {:>8} {:>8}  {:>10} {:>9}\n", "material", "f12_form", "calibration",
-             "1 g", "2 g", "3 g", "|T43-Troot|", "force err");
+  fmt::print(
+      "[4] table (temperatures in degC; measured 95/120/135, paper model 93.7/114.8/136.3)\n");
+  fmt::print("    {:<26} {:<12} {:<26} {:>8} {:>8} {:>8}  {:>10} {:>9}\n", "material", "f12_form",
+             "calibration", "1 g", "2 g", "3 g", "|T43-Troot|", "force err");
   for (std::size_t i = 0; i + 2 < rows.size(); i += 3) {
     double agree = 0.0, ferr = 0.0;
     for (int k = 0; k < 3; ++k) {
       agree = std::max(agree, std::abs(rows[i + k].t_degC - rows[i + k].root_degC));
       ferr = std::max(ferr, rows[i + k].force_rel_error);
     }
-    fmt::print("    {:<26} {:<12} {:<26} {:>8.2f} {:>8.2f} {:>8.2f}  {:>10.2e} {:>9.1e}\n", rows[i].material,
-               rows[i].f12, rows[i].calibration, rows[i].t_degC, rows[i + 1].t_degC, rows[i + 2].t_degC,
-               agree, ferr);
+    fmt::print("    {:<26} {:<12} {:<26} {:>8.2f} {:>8.2f} {:>8.2f}  {:>10.2e} {:>9.1e}\n",
+               rows[i].material, rows[i].f12, rows[i].calibration, rows[i].t_degC,
+               rows[i + 1].t_degC, rows[i + 2].t_degC, agree, ferr);
   }
-  fmt::print("    required normal force per finger: {:.3f} / {:.3f} / {:.3f} mN\n", rows[0].force_N * 1e3,
-             rows[1].force_N * 1e3, rows[2].force_N * 1e3);
+  fmt::print("    required normal force per finger: {:.3f} / {:.3f} / {:.3f} mN\n",
+             rows[0].force_N * 1e3, rows[1].force_N * 1e3, rows[2].force_N * 1e3);
   fmt::print("    CSV: {}\n", csv);
   gates.write_csv(out_dir);
   return gates.finish();
