@@ -17,6 +17,9 @@ packages=(
   libfmt-dev             # fmt: formatting
   nlohmann-json3-dev     # nlohmann-json: scenario and result files
   python3-numpy python3-matplotlib   # plots (used through /usr/bin/python3)
+  python3-dev pybind11-dev python3-pybind11   # the tcasim Python module (python/)
+  python3-pytest         # its tests (tests/python)
+  python3-distributed    # Dask distributed: the design-study runner (tcasim.study)
   "$@"
 )
 

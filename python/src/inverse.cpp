@@ -1,0 +1,328 @@
+// tcasim.inverse, tcasim.grasp and tcasim.tca_curve: the documents of `tcasim inverse`,
+// `tcasim grasp` (apps/cmd_inverse.cpp) and the table of `tcasim tca` (apps/cmd_tca.cpp),
+// built by the same library calls.
+#include "cosserat/inverse.hpp"
+
+#include <fmt/format.h>
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/cli_util.hpp"
+#include "bindings.hpp"
+#include "common/error.hpp"
+#include "common/units.hpp"
+#include "cosserat/shooting.hpp"
+#include "json_convert.hpp"
+#include "rod/result.hpp"
+#include "rod/scenario.hpp"
+#include "tca/curve.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::python {
+
+namespace {
+
+using json = nlohmann::json;
+
+json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// max_temperature_degC -> K (NaN when absent: the material's maximum).
+double max_temperature_K(std::optional<double> t_degC) {
+  if (!t_degC) return std::numeric_limits<double>::quiet_NaN();
+  require(std::isfinite(*t_degC) && *t_degC > -units::kZeroCelsius_K, "max_temperature_degC",
+          *t_degC, "must be above absolute zero");
+  return units::degC_to_K(*t_degC);
+}
+
+/// Actuator names (a list, or one comma-separated string; None: all) -> model indices.
+std::vector<int> actuator_list(const rod::RodModel& model, const py::object& names) {
+  std::string text;
+  if (!names.is_none()) {
+    if (PyUnicode_Check(names.ptr())) {
+      text = names.cast<std::string>();
+    } else {
+      for (const auto& n : names.cast<std::vector<std::string>>())
+        text += (text.empty() ? "" : ",") + n;
+    }
+  }
+  try {
+    return app::actuator_indices(model, text, "actuators");
+  } catch (const InputError& e) {
+    throw InputError("actuators", e.value(), e.rule());
+  }
+}
+
+py::object checked(const json& j, bool converged, bool check, const std::string& what,
+                   const std::string& status) {
+  py::object out = to_python(j);
+  if (check && !converged) {
+    throw_solver_error(fmt::format("tcasim.{}: not converged ({}): {}", what, status,
+                                   j.value("message", std::string())),
+                       out);
+  }
+  return out;
+}
+
+/// Picks one TCA of `tcas` (as app::select_tca, with the Python argument names).
+std::shared_ptr<const tca::Tca> pick_tca(
+    const std::map<std::string, std::shared_ptr<const tca::Tca>>& tcas, const std::string& source,
+    const std::optional<std::string>& id, const std::optional<std::string>& material_name,
+    const std::optional<std::string>& f12_form) {
+  std::string ids;
+  for (const auto& [name, t] : tcas) ids += (ids.empty() ? "" : ", ") + name;
+  std::shared_ptr<const tca::Tca> chosen;
+  if (!id) {
+    require(tcas.size() == 1, "tca", "(missing)",
+            fmt::format("is required: {} defines {} TCAs: {}", source, tcas.size(), ids));
+    chosen = tcas.begin()->second;
+  } else {
+    const auto it = tcas.find(*id);
+    require(it != tcas.end(), "tca", *id,
+            fmt::format("is not a TCA of {} (it has: {})", source, ids));
+    chosen = it->second;
+  }
+  if (f12_form) {
+    require(*f12_form == "paper" || *f12_form == "castigliano", "f12_form", *f12_form,
+            "must be paper or castigliano");
+  }
+  if (!material_name && !f12_form) return chosen;
+  tca::Parameters p = chosen->parameters();
+  tca::Material m = chosen->material();
+  if (material_name) {
+    m = rod::load_material(*material_name, "material");
+    if (!f12_form && m.f12_form) p.f12_form = *m.f12_form;
+  }
+  if (f12_form)
+    p.f12_form = *f12_form == "paper" ? tca::F12Form::kPaper : tca::F12Form::kCastigliano;
+  return std::make_shared<const tca::Tca>(p, std::move(m));
+}
+
+}  // namespace
+
+void register_inverse(py::module_& m) {
+  m.def(
+      "inverse",
+      [](py::object scenario, const Eigen::Vector3d& target_m, py::object actuators,
+         std::optional<double> max_temperature_degC, bool check) {
+        const std::shared_ptr<Scenario> sc = as_scenario(scenario);
+        const rod::RodModel& model = *sc->model;
+        if (model.tip_constraint) {
+          throw InputError("scenario tip_constraint", "(present)",
+                           "must be absent for tcasim.inverse (it moves a free tip; use "
+                           "tcasim.grasp for a blocked tip)");
+        }
+        require(target_m.allFinite(), "target_m", "(non-finite)", "must be three finite numbers");
+        cosserat::InverseOptions o;
+        o.actuators = actuator_list(model, actuators);
+        if (o.actuators.empty()) {
+          throw InputError("actuators", "(none)", "the scenario has no actuator to adjust");
+        }
+        o.max_temperature_K = max_temperature_K(max_temperature_degC);
+        json j;
+        bool converged = false;
+        std::string status;
+        {
+          py::gil_scoped_release release;
+          // As `tcasim inverse`: default shooting options, TCAs starting at ambient.
+          cosserat::ShootingSolver solver(model, cosserat::Options{});
+          cosserat::Actuation act = cosserat::Actuation::from_model(model);
+          for (int i : o.actuators) {
+            const rod::Actuator& a = model.actuators[i];
+            if (a.drive.type == rod::Drive::Type::kTca) {
+              act.set_temperature_K(i, a.drive.tca->material().reference_temperature_K);
+            }
+          }
+          cosserat::Solution sol;
+          const cosserat::InverseResult r =
+              cosserat::solve_inverse(solver, model, target_m, o, act, sol);
+          j["schema"] = "tcasim.inverse/1";
+          j["scenario"] = model.name;
+          j["converged"] = r.converged();
+          j["status"] = cosserat::to_string(r.status);
+          j["message"] = r.message;
+          j["iterations"] = r.iterations;
+          j["forward_solves"] = r.forward_solves;
+          j["target_m"] = vec(target_m);
+          j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
+          j["distance_m"] = r.distance_m;
+          json acts = json::array();
+          for (std::size_t k = 0; k < r.actuators.size(); ++k) {
+            const rod::Actuator& a = model.actuators[r.actuators[k]];
+            json e{{"name", a.name}, {"at_bound", k < r.at_bound.size() && r.at_bound[k]}};
+            const double v = k < static_cast<std::size_t>(r.values.size())
+                                 ? r.values[static_cast<Eigen::Index>(k)]
+                                 : std::numeric_limits<double>::quiet_NaN();
+            if (a.drive.type == rod::Drive::Type::kTca) {
+              e["temperature_degC"] = units::K_to_degC(v);
+              const std::size_t i = static_cast<std::size_t>(r.actuators[k]);
+              if (i < sol.tensions_N.size()) {
+                rod::ActuatorResult c(a.name, sol.tensions_N[i], sol.elongations_m[i]);
+                rod::set_coil_contacts(a, act.actuators[i].segments, c);
+                e["coils_closed"] = c.coils_closed;
+                e["contact_force_N"] = c.contact_force_N;
+              }
+            } else {
+              e["tension_N"] = v;
+            }
+            acts.push_back(e);
+          }
+          j["actuators"] = acts;
+          converged = r.converged();
+          status = cosserat::to_string(r.status);
+        }
+        return checked(j, converged, check, "inverse", status);
+      },
+      py::arg("scenario"), py::arg("target_m"), py::kw_only(), py::arg("actuators") = py::none(),
+      py::arg("max_temperature_degC") = py::none(), py::arg("check") = true,
+      R"(Inverse kinetostatics, as `tcasim inverse`: the actuation (TCA temperatures, or
+tensions of tension drives) that puts the tip at a target ([Pawlowski2019] Section IV).
+
+scenario: a tcasim.Scenario, a dict or a file path (free tip: no tip_constraint).
+target_m: target tip position (x, y, z) [m], world frame.
+actuators: names to adjust (a list or a comma-separated string; default all).
+max_temperature_degC: upper temperature bound [degC] (default the material's maximum).
+check: raise tcasim.SolverError (the document as .result) when not converged.
+Returns the document of `tcasim inverse --out` (schema tcasim.inverse/1) as a dict:
+converged, status, message, iterations, forward_solves, target_m, tip.position_m,
+distance_m [m], and per actuator name, at_bound, temperature_degC (with coils_closed,
+contact_force_N [N]) or tension_N [N].)");
+
+  m.def(
+      "grasp",
+      [](py::object scenario, double mass_g, double friction, int fingers,
+         std::optional<double> max_temperature_degC, bool check) {
+        require(std::isfinite(mass_g) && mass_g > 0.0, "mass_g", mass_g, "must be > 0");
+        require(std::isfinite(friction) && friction > 0.0, "friction", friction, "must be > 0");
+        require(fingers >= 1, "fingers", fingers, "must be an integer >= 1");
+        const std::shared_ptr<Scenario> sc = as_scenario(scenario);
+        const rod::RodModel& model = *sc->model;
+        if (!model.tip_constraint || !model.tip_constraint->normal_W) {
+          throw InputError("tip_constraint.normal", "(missing)",
+                           "tcasim.grasp needs a tip_constraint with a \"normal\" (the contact "
+                           "direction from the finger toward the object)");
+        }
+        cosserat::GraspOptions o;
+        o.mass_kg = units::g_to_kg(mass_g);
+        o.friction = friction;
+        o.fingers = fingers;
+        o.max_temperature_K = max_temperature_K(max_temperature_degC);
+        json j;
+        bool converged = false;
+        {
+          py::gil_scoped_release release;
+          cosserat::Options so;
+          so.tolerance = 1e-12;  // as `tcasim grasp`
+          const cosserat::GraspResult r = cosserat::solve_grasp(model, so, o);
+          j["schema"] = "tcasim.grasp/1";
+          j["scenario"] = model.name;
+          j["converged"] = r.converged;
+          j["message"] = r.message;
+          j["mass_g"] = mass_g;
+          j["friction"] = friction;
+          j["fingers"] = fingers;
+          j["temperature_degC"] = units::K_to_degC(r.temperature_K);
+          j["normal_force_N"] = r.required_force_N;
+          j["blocked_normal_force_N"] = r.blocked_normal_force_N;
+          j["root_temperature_degC"] =
+              r.root_temperature_K ? json(units::K_to_degC(*r.root_temperature_K)) : json();
+          j["iterations"] = r.iterations;
+          j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
+          converged = r.converged;
+        }
+        return checked(j, converged, check, "grasp", converged ? "converged" : "not converged");
+      },
+      py::arg("scenario"), py::kw_only(), py::arg("mass_g"), py::arg("friction"),
+      py::arg("fingers"), py::arg("max_temperature_degC") = py::none(), py::arg("check") = true,
+      R"(Grasp temperature, as `tcasim grasp`: the TCA temperature at which a blocked finger's
+normal force reaches m g / (mu n) ([Pawlowski2019] Eqs. (43)-(44)).
+
+scenario: one finger with a tip_constraint and its contact normal.
+mass_g: grasped mass [g]; friction: mu; fingers: n.
+Returns the document of `tcasim grasp --out` (schema tcasim.grasp/1) as a dict:
+temperature_degC, normal_force_N [N], blocked_normal_force_N [N], root_temperature_degC,
+iterations, tip.position_m [m], converged, message.)");
+
+  m.def(
+      "tca_curve",
+      [](py::object source, std::vector<double> temperatures_degC, std::optional<double> tension_N,
+         std::optional<double> load_g, std::optional<std::string> tca_id,
+         std::optional<std::string> material, std::optional<std::string> f12_form) {
+        std::map<std::string, std::shared_ptr<const tca::Tca>> tcas;
+        std::string name;
+        if (py::isinstance<Scenario>(source) || PyDict_Check(source.ptr())) {
+          const std::shared_ptr<Scenario> sc = as_scenario(source);
+          tcas = sc->model->tcas;
+          name = "scenario '" + sc->model->name + "'";
+        } else {
+          name = py::module_::import("os").attr("fspath")(source).cast<std::string>();
+          tcas = rod::read_tcas(name);  // a scenario or a TCA file (tcasim.tcas/1)
+        }
+        require(tension_N.has_value() != load_g.has_value(), "tension_N", "(with load_g)",
+                "give exactly one of tension_N and load_g");
+        const auto tca = pick_tca(tcas, name, tca_id, material, f12_form);
+        double t_N = 0.0;
+        if (load_g) {
+          require(std::isfinite(*load_g) && *load_g >= 0.0, "load_g", *load_g,
+                  "must be >= 0 (a hanging mass)");
+          t_N = tca::hanging_load_tension_N(units::g_to_kg(*load_g));
+        } else {
+          require(std::isfinite(*tension_N), "tension_N", *tension_N, "must be finite");
+          t_N = *tension_N;
+        }
+        std::vector<double> temps_K;
+        for (const double t : temperatures_degC) {
+          require(std::isfinite(t) && t > -units::kZeroCelsius_K, "temperatures_degC", t,
+                  "must be above absolute zero");
+          temps_K.push_back(units::degC_to_K(t));
+        }
+        std::vector<tca::CurvePoint> curve;
+        {
+          py::gil_scoped_release release;
+          curve = tca::elongation_curve(*tca, t_N, temps_K);
+        }
+        const auto n = static_cast<py::ssize_t>(curve.size());
+        py::array_t<double> e(n), f(n), a(n);
+        py::array_t<bool> closed(n);
+        for (py::ssize_t k = 0; k < n; ++k) {
+          const tca::CurvePoint& p = curve[static_cast<std::size_t>(k)];
+          e.mutable_data()[k] = p.elongation_m;
+          f.mutable_data()[k] = p.tension_N;
+          a.mutable_data()[k] = units::rad_to_deg(p.pitch_angle_rad);
+          closed.mutable_data()[k] = p.coils_closed;
+        }
+        py::dict out;
+        out["temperature_degC"] = py::array_t<double>(n, temperatures_degC.data());
+        out["elongation_m"] = e;
+        out["tension_N"] = f;
+        out["pitch_angle_deg"] = a;
+        out["coils_closed"] = closed;
+        return out;
+      },
+      py::arg("source"), py::arg("temperatures_degC"), py::kw_only(),
+      py::arg("tension_N") = py::none(), py::arg("load_g") = py::none(),
+      py::arg("tca") = py::none(), py::arg("material") = py::none(),
+      py::arg("f12_form") = py::none(),
+      R"(Elongation of one TCA under a constant load over temperatures, as `tcasim tca`
+([Pawlowski2019] Eqs. (1)-(5); an extension TCA stays at its closed length until the onset).
+
+source: a tcasim.Scenario or dict (its `tcas`), or the path of a scenario or TCA file.
+temperatures_degC: temperatures [degC].
+tension_N: constant tension F [N] (positive pulls the TCA longer), or
+load_g: a hanging mass [g] compressing it (F = -m g); give exactly one.
+tca: the TCA id (required when the source defines several).
+material: override the material with a shipped one (data/materials/NAME.json).
+f12_form: override the Eq. (4) factor, "paper" (8) or "castigliano" (16).
+Returns a dict of numpy arrays: temperature_degC, elongation_m [m], tension_N [N],
+pitch_angle_deg [deg], coils_closed (the columns of `tcasim tca`).)");
+}
+
+}  // namespace tcasim::python

@@ -1,0 +1,95 @@
+"""tcasim.sweep, tcasim.inverse, tcasim.grasp and tcasim.tca_curve give the numbers of
+`tcasim sweep`, `tcasim inverse`, `tcasim grasp` and `tcasim tca`."""
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+
+import tcasim
+from conftest import SCENARIO_DIR
+
+
+def read_csv(text):
+    rows = list(csv.DictReader(io.StringIO(text)))
+    return {k: [r[k] for r in rows] for k in rows[0]}
+
+
+def sweep_cell(v, name):
+    """A Python sweep value as `tcasim sweep` prints it (apps/cmd_solve.cpp)."""
+    if isinstance(v, (bool, np.bool_)):
+        return "1" if v else "0"
+    if name == "iterations":
+        return str(int(v))
+    if np.isnan(v):
+        return ""
+    if name == "residual":
+        return f"{v:.6e}"
+    return f"{v:.12e}"
+
+
+@pytest.mark.parametrize("method", ["cosserat", "fe"])
+def test_temperature_sweep_matches_the_cli_csv(method, run_cli):
+    scenario = SCENARIO_DIR / "square-manipulator-25C.json"
+    cli = run_cli("sweep", scenario, "--actuator", "u-tca", "--temperatures-degC", "25:45:10",
+                  "--method", method, "--elements", "8")
+    assert cli.returncode == 0, cli.stderr
+    expected = read_csv(cli.stdout)
+    got = tcasim.sweep(scenario, "u-tca", temperatures_degC=[25, 35, 45], method=method,
+                       elements=8)
+    assert [k for k in got if k != "status"] == list(expected)
+    assert got["status"] == ["converged"] * 3
+    for name, column in expected.items():
+        if name == "temperature_degC":
+            assert [f"{v:g}" for v in got[name]] == column
+        else:
+            assert [sweep_cell(v, name) for v in got[name]] == column, name
+
+
+def test_tension_sweep_matches_the_cli_csv(run_cli):
+    scenario = SCENARIO_DIR / "steel-4-tendon.json"
+    cli = run_cli("sweep", scenario, "--actuator", "t0", "--tensions-N", "0:10:5")
+    assert cli.returncode == 0, cli.stderr
+    expected = read_csv(cli.stdout)
+    got = tcasim.sweep(scenario, "t0", tensions_N=np.array([0.0, 5.0, 10.0]))
+    for name, column in expected.items():
+        if name != "tension_N":
+            assert [sweep_cell(v, name) for v in got[name]] == column, name
+
+
+def test_inverse_matches_the_cli_document(run_cli, tmp_path):
+    scenario = SCENARIO_DIR / "square-manipulator-25C.json"
+    target = [-1.962027285920e-03, 0, 3.992439219707e-02]
+    out = tmp_path / "inv.json"
+    cli = run_cli("inverse", scenario, "--target-m", ",".join(map(repr, target)), "--out", out)
+    assert cli.returncode == 0, cli.stderr
+    got = tcasim.inverse(scenario, target)
+    assert got == json.loads(out.read_text())
+    assert got["converged"] and got["actuators"][0]["coils_closed"] is False
+
+
+def test_grasp_matches_the_cli_document(run_cli, tmp_path):
+    scenario = SCENARIO_DIR / "gripper-finger.json"
+    out = tmp_path / "grasp.json"
+    cli = run_cli("grasp", scenario, "--mass-g", "10", "--friction", "0.5", "--fingers", "2",
+                  "--out", out)
+    assert cli.returncode == 0, cli.stderr
+    got = tcasim.grasp(scenario, mass_g=10, friction=0.5, fingers=2)
+    assert got == json.loads(out.read_text())
+
+
+def test_tca_curve_matches_the_cli_table(run_cli):
+    source = SCENARIO_DIR / "circular-manipulator.json"
+    cli = run_cli("tca", source, "--load-g", "7.5", "--temperatures-degC", "25:160:15")
+    assert cli.returncode == 0, cli.stderr
+    expected = read_csv(cli.stdout)
+    temps = np.arange(25.0, 161.0, 15.0)
+    got = tcasim.tca_curve(source, temps, load_g=7.5)
+    # `tcasim tca` prints shortest round-trip numbers: equal text is equal doubles.
+    for name in ("elongation_m", "tension_N", "pitch_angle_deg"):
+        assert [float(v) for v in expected[name]] == list(got[name]), name
+    assert [v == "1" for v in expected["coils_closed"]] == list(got["coils_closed"])
+    # The same TCA from the scenario object.
+    again = tcasim.tca_curve(tcasim.load_scenario(source), temps, load_g=7.5)
+    np.testing.assert_array_equal(again["elongation_m"], got["elongation_m"])
