@@ -11,6 +11,7 @@ import json
 import pathlib
 import statistics
 import subprocess
+import time
 import timeit
 
 import tcasim
@@ -48,9 +49,28 @@ def main():
         ("cosserat", cpp["BM_SolveCosserat"], py_median(lambda: tcasim.solve(sc), args.repeats)),
         ("fe", cpp["BM_SolveFe"], py_median(lambda: tcasim.solve(sc, "fe"), args.repeats)),
     ]
+    print("Separate programs (bench_solve_api, then timeit; a busy machine moves both):")
     print(f"{'solve':10} {'C++ median':>12} {'Python median':>14} {'difference':>11}")
     for name, c, p in rows:
         print(f"{name:10} {c * 1e6:10.1f} us {p * 1e6:12.1f} us {(p - c) * 1e6:8.1f} us")
+    # Paired, in one process: rounds alternating the solve looped in C++ (the same library
+    # code, _solve_times_cpp) and tcasim.solve from Python; the median of the per-round
+    # differences cancels the drift of a shared machine.
+    print("Paired in one process (median over rounds of median C++ vs median Python solve):")
+    for method in ("cosserat", "fe"):
+        n = 20 if method == "cosserat" else 5
+        diffs, cs, ps = [], [], []
+        for _ in range(args.repeats):
+            c = statistics.median(tcasim._tcasim._solve_times_cpp(sc, method, n))
+            times = []
+            for _ in range(n):
+                t0 = time.perf_counter()
+                tcasim.solve(sc, method)
+                times.append(time.perf_counter() - t0)
+            p = statistics.median(times)
+            cs.append(c), ps.append(p), diffs.append(p - c)
+        print(f"{method:10} {statistics.median(cs) * 1e6:10.1f} us {statistics.median(ps) * 1e6:12.1f} us "
+              f"{statistics.median(diffs) * 1e6:8.1f} us")
     # What else a Python caller may pay: a dict (parsed and validated per call) and reading
     # the numpy fields of a result.
     r = tcasim.solve(sc)

@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -183,6 +184,12 @@ rod::Result solve_with(const rod::RodModel& model, const std::string& method,
 std::optional<std::string> fspath(const py::object& p) {
   if (p.is_none()) return std::nullopt;
   return py::module_::import("os").attr("fspath")(p).cast<std::string>();
+}
+
+/// Keeps a benchmarked result alive (the compiler may not drop the solve).
+void benchmark_sink(const rod::Result& r) {
+  static volatile double sink = 0.0;
+  sink = sink + r.tip_position_W_m.x();
 }
 
 const char* kOptionsDoc = R"(
@@ -364,6 +371,27 @@ Returns a tcasim.Result whose fields mirror the result file. The GIL is released
 the solver runs.)") +
        kOptionsDoc)
           .c_str());
+
+  m.def(
+      "_solve_times_cpp",
+      [](py::object scenario, const std::string& method, int repeats) {
+        const std::shared_ptr<Scenario> sc = as_scenario(scenario);
+        check_method(method);
+        const SolveOptions f;
+        std::vector<double> times;
+        py::gil_scoped_release release;
+        for (int k = 0; k < repeats; ++k) {
+          const auto t0 = std::chrono::steady_clock::now();
+          rod::Result r = solve_with(*sc->model, method, f);
+          const auto t1 = std::chrono::steady_clock::now();
+          benchmark_sink(r);
+          times.push_back(std::chrono::duration<double>(t1 - t0).count());
+        }
+        return times;
+      },
+      py::arg("scenario"), py::arg("method") = "cosserat", py::arg("repeats") = 10,
+      "For bench/python_overhead.py: the wall time [s] of each of `repeats` solves with the "
+      "default options run in C++ (the work of tcasim.solve without Python).");
 
   m.def(
       "sweep",
