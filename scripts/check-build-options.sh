@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # Configures and builds tcasim with each optional part switched off in turn
-# (TCASIM_BUILD_VALIDATION, TCASIM_BUILD_TESTS, TCASIM_BUILD_BENCH), each in its own build
+# (TCASIM_BUILD_VALIDATION, TCASIM_BUILD_TESTS, TCASIM_BUILD_BENCH, TCASIM_BUILD_PYTHON), each in its own build
 # folder, and runs the default tests of each configuration that has them: a target or test
 # that silently needs a switched-off part fails here.
 # Usage: scripts/check-build-options.sh
-# The build folders build-no-validation, build-no-tests, build-no-bench sit beside build/, at
+# The build folders build-no-validation, build-no-tests, build-no-bench, build-no-python sit beside build/, at
 # the same depth, so a compiler cache (ccache with CCACHE_BASEDIR) reuses build/'s objects.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 jobs="${JOBS:-$(nproc)}"
 
 failed=()
-for option in TCASIM_BUILD_VALIDATION TCASIM_BUILD_TESTS TCASIM_BUILD_BENCH; do
+for option in TCASIM_BUILD_VALIDATION TCASIM_BUILD_TESTS TCASIM_BUILD_BENCH TCASIM_BUILD_PYTHON; do
   part="${option#TCASIM_BUILD_}"
   build="$root/build-no-${part,,}"
   echo "=== $option=OFF ($build)"

@@ -5,10 +5,14 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "apps/cli_util.hpp"
@@ -185,6 +189,11 @@ std::optional<std::string> fspath(const py::object& p) {
   if (p.is_none()) return std::nullopt;
   return py::module_::import("os").attr("fspath")(p).cast<std::string>();
 }
+
+/// Points per sweep chunk by default, as `tcasim sweep --chunk`: each chunk starts cold.
+constexpr long long kSweepChunk = 100;
+/// Threads of a sweep: more than this many is a typo, not a machine (`tcasim sweep --jobs`).
+constexpr int kMaxSweepJobs = 1024;
 
 /// Keeps a benchmarked result alive (the compiler may not drop the solve).
 void benchmark_sink(const rod::Result& r) {
@@ -400,7 +409,7 @@ the solver runs.)") +
          std::optional<std::vector<double>> tensions_N, const std::string& method,
          std::optional<int> steps, std::optional<std::string> scheme, std::optional<double> rtol,
          bool no_planar, int elements, int order, const std::string& integration,
-         const std::string& linear_solver) {
+         const std::string& linear_solver, int jobs, long long chunk) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         const rod::RodModel& model = *sc->model;
         check_method(method);
@@ -429,35 +438,72 @@ the solver runs.)") +
         }
         const SolveOptions f{steps,    scheme, rtol,        no_planar,
                              elements, order,  integration, linear_solver};
+        app::require_count(jobs, "jobs", 1, kMaxSweepJobs);
+        app::require_count(chunk, "chunk", 1, 1000000);
+        const bool fe = method == "fe";
+        // Options first, so a bad one is reported before any solve.
+        std::optional<cosserat::Options> shooting_opts;
+        std::optional<beam_fe::Options> fe_opts;
+        if (fe) {
+          fe_opts = fe_options(f);
+        } else {
+          shooting_opts = cosserat_options(f);
+        }
         std::vector<rod::Result> results(values.size());
         {
           py::gil_scoped_release release;
-          // As `tcasim sweep`: one solver per method, each point warm-started from the last.
-          const bool fe = method == "fe";
-          std::optional<cosserat::ShootingSolver> shooting;
-          std::optional<beam_fe::Options> fe_opts;
-          if (fe) {
-            fe_opts = fe_options(f);
-          } else {
-            shooting.emplace(model, cosserat_options(f));
+          // As `tcasim sweep --chunk K --jobs N`: chunks of K consecutive points, each
+          // starting cold (fresh loads, solver and state) and warm-starting its points in
+          // order, so the threads give the numbers of the serial run bit for bit.
+          std::vector<std::pair<std::size_t, std::size_t>> chunks;
+          for (std::size_t b = 0; b < values.size(); b += static_cast<std::size_t>(chunk)) {
+            chunks.emplace_back(b, std::min(values.size(), b + static_cast<std::size_t>(chunk)));
           }
-          rod::Loads loads = rod::Loads::from_model(model);
-          cosserat::Solution solution;
-          beam_fe::State fe_state;
-          for (std::size_t k = 0; k < values.size(); ++k) {
-            if (by_temperature) {
-              loads.set_temperature_K(index, units::degC_to_K(values[k]));
-            } else {
-              loads.set_tension_N(index, values[k]);
+          const auto solve_chunk = [&](std::size_t c) {
+            rod::Loads loads = rod::Loads::from_model(model);
+            std::optional<cosserat::ShootingSolver> shooting;
+            cosserat::Solution solution;
+            beam_fe::State fe_state;
+            if (!fe) shooting.emplace(model, *shooting_opts);
+            for (std::size_t k = chunks[c].first; k < chunks[c].second; ++k) {
+              if (by_temperature) {
+                loads.set_temperature_K(index, units::degC_to_K(values[k]));
+              } else {
+                loads.set_tension_N(index, values[k]);
+              }
+              if (fe) {
+                const beam_fe::Summary summary = beam_fe::solve(model, loads, *fe_opts, fe_state);
+                results[k] = beam_fe::make_result(model, loads, *fe_opts, fe_state, summary);
+              } else {
+                const cosserat::Summary summary = shooting->solve(loads, solution);
+                results[k] = shooting->make_result(loads, solution, summary);
+              }
             }
-            if (fe) {
-              const beam_fe::Summary summary = beam_fe::solve(model, loads, *fe_opts, fe_state);
-              results[k] = beam_fe::make_result(model, loads, *fe_opts, fe_state, summary);
-            } else {
-              const cosserat::Summary summary = shooting->solve(loads, solution);
-              results[k] = shooting->make_result(loads, solution, summary);
+          };
+          std::atomic<std::size_t> next{0};
+          std::atomic<bool> stop{false};
+          std::mutex error_mutex;
+          std::exception_ptr first_error;
+          const auto work = [&] {
+            while (!stop.load()) {
+              const std::size_t c = next.fetch_add(1);
+              if (c >= chunks.size()) return;
+              try {
+                solve_chunk(c);
+              } catch (...) {
+                const std::lock_guard<std::mutex> lock(error_mutex);
+                if (!first_error) first_error = std::current_exception();
+                stop.store(true);
+              }
             }
-          }
+          };
+          const std::size_t threads =
+              std::min<std::size_t>(static_cast<std::size_t>(jobs), chunks.size());
+          std::vector<std::thread> pool;
+          for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+          work();
+          for (auto& t : pool) t.join();
+          if (first_error) std::rethrow_exception(first_error);
         }
         // Columns of the CSV of `tcasim sweep`, in its order (numbers unrounded).
         const auto n = static_cast<py::ssize_t>(values.size());
@@ -526,12 +572,16 @@ the solver runs.)") +
       py::arg("method") = "cosserat", py::arg("steps") = py::none(), py::arg("scheme") = py::none(),
       py::arg("rtol") = py::none(), py::arg("no_planar") = false, py::arg("elements") = 16,
       py::arg("order") = 2, py::arg("integration") = "reduced", py::arg("linear_solver") = "klu",
+      py::arg("jobs") = 1, py::arg("chunk") = kSweepChunk,
       (std::string(R"(Solves a scenario over a range of one actuator's temperature or tension,
-each point warm-started from the previous one, as `tcasim sweep` (the same numbers).
+as `tcasim sweep` (the same numbers): in chunks of `chunk` consecutive points, each
+starting cold and warm-starting its points in order, solved on `jobs` threads (the GIL
+released); the result does not depend on `jobs`.
 
 actuator: the name of the swept actuator.
 temperatures_degC: TCA temperatures [degC] (every segment), or
 tensions_N: tensions of one string [N] (tension drive); give exactly one.
+jobs: threads (1 to 1024; default 1); chunk: points per chunk (default 100).
 Returns a dict of numpy arrays named as the columns of the sweep CSV (temperature_degC or
 tension_N, converged, iterations, residual, tip_x_m, tip_y_m, tip_z_m, bending_radius_m,
 <actuator>_tension_N, <actuator>_elongation_m, TCA drives <actuator>_coils_closed and

@@ -17,8 +17,28 @@ tcasim.SolverError carrying the partial result (or returns it with check=False).
 The design-study runner on Dask is tcasim.study (imported on demand).
 """
 
-from ._errors import DomainError, InputError, SolverError
-from ._tcasim import (
+import os as _os
+import pathlib as _pathlib
+
+
+def _find_installed_data():
+    """An installed package (<prefix>/lib/python3.X/dist-packages/tcasim) uses the data
+    installed with it (<prefix>/share/tcasim), wherever the prefix was moved, unless
+    TCASIM_DATA_DIR is set (docs/python.md)."""
+    if _os.environ.get("TCASIM_DATA_DIR"):
+        return
+    here = _pathlib.Path(__file__).resolve().parent
+    for prefix in list(here.parents)[:5]:
+        data = prefix / "share" / "tcasim"
+        if (data / "materials").is_dir() and (prefix / "lib").is_dir():
+            _os.environ["TCASIM_DATA_DIR"] = str(data)
+            return
+
+
+_find_installed_data()
+
+from ._errors import DomainError, InputError, SolverError  # noqa: E402
+from ._tcasim import (  # noqa: E402
     Result,
     Scenario,
     data_directory,

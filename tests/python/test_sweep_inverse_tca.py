@@ -93,3 +93,19 @@ def test_tca_curve_matches_the_cli_table(run_cli):
     # The same TCA from the scenario object.
     again = tcasim.tca_curve(tcasim.load_scenario(source), temps, load_g=7.5)
     np.testing.assert_array_equal(again["elongation_m"], got["elongation_m"])
+
+
+def test_sweep_threads_give_the_serial_numbers():
+    scenario = SCENARIO_DIR / "circular-manipulator.json"
+    temps = [30, 40, 50, 60, 70, 80, 90]
+    serial = tcasim.sweep(scenario, "tca", temperatures_degC=temps, chunk=2)
+    threads = tcasim.sweep(scenario, "tca", temperatures_degC=temps, chunk=2, jobs=3)
+    assert list(serial) == list(threads)
+    for k in serial:
+        assert list(serial[k]) == list(threads[k]), k
+    # A chunk starts cold: its first point equals a single-point sweep.
+    alone = tcasim.sweep(scenario, "tca", temperatures_degC=[50])
+    assert alone["tip_x_m"][0] == serial["tip_x_m"][2]
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.sweep(scenario, "tca", temperatures_degC=temps, jobs=0)
+    assert e.value.key == "jobs"
