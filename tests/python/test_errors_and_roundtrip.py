@@ -33,7 +33,8 @@ def test_an_unknown_key_is_refused_by_path():
     d["body"]["lenght_m"] = 0.04
     with pytest.raises(tcasim.InputError) as e:
         tcasim.load_scenario(d)
-    assert "lenght_m" in e.value.key or "lenght_m" in e.value.value
+    assert (e.value.key, e.value.value) == ("body.lenght_m", "0.04")
+    assert e.value.rule.startswith("is not an allowed key here")
 
 
 def test_python_values_that_are_not_json_are_refused_by_path():
@@ -57,7 +58,7 @@ def test_the_cli_and_python_give_the_same_message(run_cli, tmp_path):
     assert cli.returncode == 2
     with pytest.raises(tcasim.InputError) as e:
         tcasim.solve(d)
-    assert f"input error: {e.value}" in cli.stderr or str(e.value).split(" = ", 1)[1] in cli.stderr
+    assert cli.stderr == f"tcasim: input error: {e.value}\n"
 
 
 @pytest.mark.parametrize("kwargs,key,value", [
@@ -98,8 +99,8 @@ def test_sweep_and_inverse_name_their_arguments():
 
 
 def test_a_solve_that_does_not_converge_raises_with_the_partial_result():
-    # Steel rod, 4 tendons, one iteration would never do; the shooting solver cannot take a
-    # 2-step RK4 discretization of a tendon pulled to a full circle and more.
+    # A steel rod's tendon pulled with 1 MN (the rod would curl many times over): the load
+    # steps of a single linear element fail.
     d = json.loads((SCENARIO_DIR / "steel-4-tendon.json").read_text())
     d["actuators"][0]["drive"]["tension_N"] = 1e6
     with pytest.raises(tcasim.SolverError) as e:
@@ -148,16 +149,22 @@ def test_edited_dicts_are_validated_again():
 
 def test_the_gil_is_released_during_solves():
     """Python code runs in another thread while a solve is in C++: with the GIL held, the
-    main thread could run at most one switch interval (5 ms) after the solve began."""
+    main thread would stop for the whole solve (one gap between its ticks as long as the
+    solve); released, its gaps are the operating system's scheduling only."""
     import threading
     import time
 
     sc = tcasim.load_scenario(BASE)
+    # An FE solve long enough to tell (about 0.3 s; FE time grows with the elements).
+    t0 = time.perf_counter()
+    tcasim.solve(sc, method="fe", elements=GIL_TEST_ELEMENTS)
+    once = time.perf_counter() - t0
+    elements = min(10000, max(GIL_TEST_ELEMENTS, int(GIL_TEST_ELEMENTS * 0.3 / once)))
     span = {}
 
     def work():
         span["start"] = time.perf_counter()
-        tcasim.solve(sc, method="fe", elements=GIL_TEST_ELEMENTS)
+        tcasim.solve(sc, method="fe", elements=elements)
         span["end"] = time.perf_counter()
 
     ticks = []
@@ -167,11 +174,11 @@ def test_the_gil_is_released_during_solves():
         ticks.append(time.perf_counter())
     t.join()
     duration = span["end"] - span["start"]
-    assert duration > 0.05, "the solve is too short to tell"
-    inside = [x for x in ticks if span["start"] < x < span["end"]]
-    assert inside and inside[-1] - span["start"] > 0.5 * duration
+    assert duration > 0.1, "the solve is too short to tell"
+    inside = [span["start"]] + [x for x in ticks if span["start"] < x < span["end"]] + [span["end"]]
+    longest_gap = max(b - a for a, b in zip(inside, inside[1:]))
+    assert longest_gap < 0.5 * duration, (longest_gap, duration)
 
 
-# Elements of the FE solve of the GIL test: long enough (> 50 ms) to tell, short enough to
-# keep the test quick.
+# Elements of the first FE solve of the GIL test (scaled up to a solve of about 0.3 s).
 GIL_TEST_ELEMENTS = 400

@@ -70,7 +70,6 @@ OPTION_CASES = [
 
 @pytest.mark.parametrize("name,kwargs,flags", OPTION_CASES, ids=[str(c[2]) for c in OPTION_CASES])
 def test_options_mirror_the_cli_flags(name, kwargs, flags, run_cli, tmp_path):
-    path = tcasim.data_directory()  # noqa: F841 (the shipped data is found)
     from conftest import SCENARIO_DIR
 
     scenario = SCENARIO_DIR / f"{name}.json"
