@@ -68,6 +68,7 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: now
 td.pass, span.pass { background: #d9f2d9; color: #145214; font-weight: bold; }
 td.fail, span.fail { background: #f8d0d0; color: #8a1010; font-weight: bold; }
 tr.group th { background: #e4e9f2; }
+.badge { font-size: 0.8em; padding: 0 0.35em; border-radius: 3px; white-space: nowrap; }
 figure { margin: 0.6em 0; }
 img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 .plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(420px, 1fr)); gap: 0.6em; }
@@ -428,25 +429,30 @@ def card_crosscheck(out_dir):
     if not finest:
         return None
 
-    def worst(column):
+    def worst(column, order=None):
         best = None
-        for (scenario, order), r in finest.items():
+        for (scenario, o), r in finest.items():
             v = number(r.get(column))
-            if v is not None and (best is None or v > best[0]):
-                best = (v, scenario, order, r.get("elements", "?"))
+            if (order is None or o == order) and v is not None and (best is None or v > best[0]):
+                best = (v, scenario, o, r.get("elements", "?"))
         return best
 
-    tip = worst("tip_diff_over_L")
-    rot = worst("rotation_diff_rad")
-    ten = worst("max_tension_diff_N")
-    lines = [f"{len({k[0] for k in finest})} scenarios, at each one's finest mesh"]
+    orders = sorted({o for _, o in finest})
     table = []
-    for label, w in (("tip difference / L", tip), ("rotation [rad]", rot), ("tension [N]", ten)):
+    for o in orders:
+        w = worst("tip_diff_over_L", o)
+        if w:
+            table.append([f"tip difference / L, order {o}", f"{w[0]:.2e}", f"{w[1]} ({w[3]} el.)"])
+    for label, column in (("rotation [rad]", "rotation_diff_rad"), ("tension [N]", "max_tension_diff_N")):
+        w = worst(column)
         if w:
             table.append([label, f"{w[0]:.2e}", f"{w[1]} (order {w[2]}, {w[3]} el.)"])
+    # The headline: the highest element order's worst tip difference (the FE default is 2).
+    tip = worst("tip_diff_over_L", orders[-1]) if orders else None
+    lines = [f"{len({k[0] for k in finest})} scenarios, each at its finest mesh"]
     return ("Cross-check: shooting vs FE, worst difference",
-            f"{tip[0]:.1e} L" if tip else "-", lines, (["quantity", "worst", "where"], table),
-            "validate_crosscheck")
+            f"{tip[0]:.1e} L (order {orders[-1]})" if tip else "-", lines,
+            (["quantity", "worst", "where"], table), "validate_crosscheck")
 
 
 def card_orders(out_dir):
@@ -528,10 +534,20 @@ def dashboard_cards(out_dir, timing, run):
     return cards, errors
 
 
-def card_html(card):
+def gate_badge(counts):
+    """'gates 56/56' in green, or the failures in red; empty when the program has no gates."""
+    if not counts or not counts[1]:
+        return ""
+    passed, total = counts
+    cls = "pass" if passed == total else "fail"
+    return f' <span class="{cls} badge">gates {passed}/{total}</span>'
+
+
+def card_html(card, gate_counts):
     title, headline, lines, table, anchor = card
     wide = table is not None and len(table[0]) >= 3 and len(table[1]) > 3
-    parts = [f'<div class="card{" wide" if wide else ""}"><h3><a href="#{esc(anchor)}">{esc(title)}</a></h3>',
+    parts = [f'<div class="card{" wide" if wide else ""}"><h3><a href="#{esc(anchor)}">{esc(title)}</a>'
+             f"{gate_badge(gate_counts.get(anchor))}</h3>",
              f'<p class="big">{esc(headline)}</p>']
     parts += [f"<p>{esc(line)}</p>" for line in lines]
     if table:
@@ -540,9 +556,11 @@ def card_html(card):
     return "\n".join(parts)
 
 
-def card_md(card):
-    title, headline, lines, table, _ = card
-    out = [f"### {title}: {headline}", ""] + [f"- {line}" for line in lines] + [""]
+def card_md(card, gate_counts):
+    title, headline, lines, table, anchor = card
+    counts = gate_counts.get(anchor)
+    badge = f" (gates {counts[0]}/{counts[1]})" if counts and counts[1] else ""
+    out = [f"### {title}: {headline}{badge}", ""] + [f"- {line}" for line in lines] + [""]
     if table:
         out += [md_table(table[0], table[1]), ""]
     return out
@@ -654,7 +672,9 @@ def main(argv):
         h.append('<p class="fail">Program-level problems:</p><ul>' +
                  "".join(f"<li>{esc(p)}</li>" for p in problems) + "</ul>")
     h.append('<section id="dashboard"><h2>Headline numbers</h2>')
-    h.append('<div class="cards">' + "\n".join(card_html(c) for c in cards) + "</div>")
+    gate_counts = {name: (sum(1 for r in rows if r.get("passed") == "1"), len(rows))
+                   for name, rows in per_program.items()}
+    h.append('<div class="cards">' + "\n".join(card_html(c, gate_counts) for c in cards) + "</div>")
     if card_errors:
         h.append('<p class="note">Cards left out (unexpected table contents): ' + esc("; ".join(card_errors)) + "</p>")
     h.append("</section>")
@@ -673,7 +693,7 @@ def main(argv):
         md += ["Program-level problems:", ""] + [f"- {p}" for p in problems] + [""]
     md += ["## Headline numbers", ""]
     for c in cards:
-        md += card_md(c)
+        md += card_md(c, gate_counts)
     if failed_gates:
         md += [f"## Failed gates ({n_failed})", "",
                md_table(["program", "gate", "measured", "bound"], [[p, g, m, b] for p, g, m, b, _ in failed_gates]),
