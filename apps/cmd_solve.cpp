@@ -281,9 +281,15 @@ void add_sweep_command(CLI::App& app) {
         fixed_chunks(values.size(), static_cast<std::size_t>(flags->chunk));
     const IndexRange mine = part_of(chunks.size(), static_cast<std::size_t>(shard.index),
                                     static_cast<std::size_t>(shard.count));
-    const std::size_t points =
-        mine.size() == 0 ? 0 : chunks[mine.end - 1].end - chunks[mine.begin].begin;
+    const std::size_t first = mine.size() == 0 ? 0 : chunks[mine.begin].begin;
+    const std::size_t points = mine.size() == 0 ? 0 : chunks[mine.end - 1].end - first;
 
+    if (points == 0) {
+      fmt::print(stderr,
+                 "tcasim sweep: shard {}/{} holds no point (the sweep has {} chunk(s) of up to {} "
+                 "points; a smaller --chunk gives more); writing the header only\n",
+                 shard.index, shard.count, chunks.size(), flags->chunk);
+    }
     Output out(flags->out);
     std::ostream& os = out.stream();
     fmt::print(os, "{},converged,iterations,residual,tip_x_m,tip_y_m,tip_z_m,bending_radius_m",
@@ -307,7 +313,7 @@ void add_sweep_command(CLI::App& app) {
     // Shared by the threads, under `mutex`: the progress, the rows written so far (whole
     // chunks in order, as soon as every earlier chunk is done) and the failure count.
     std::mutex mutex;
-    std::vector<std::string> rows(values.size());
+    std::vector<std::string> rows(points);  // point k is rows[k - first]
     std::vector<char> chunk_done(mine.size(), 0);
     std::size_t next_chunk = 0, done = 0;
     int failures = 0;
@@ -335,7 +341,7 @@ void add_sweep_command(CLI::App& app) {
           r = shooting->make_result(loads, solution, summary);
         }
         if (!r.converged) ++chunk_failures;
-        rows[k] = sweep_row(values[k], r);
+        rows[k - first] = sweep_row(values[k], r);
         if (progress) {
           const std::lock_guard<std::mutex> lock(mutex);
           progress->update(++done);
@@ -347,8 +353,8 @@ void add_sweep_command(CLI::App& app) {
       for (; next_chunk < mine.size() && chunk_done[next_chunk]; ++next_chunk) {
         const IndexRange written = chunks[mine.begin + next_chunk];
         for (std::size_t k = written.begin; k < written.end; ++k) {
-          os << rows[k];
-          std::string().swap(rows[k]);
+          os << rows[k - first];
+          std::string().swap(rows[k - first]);
         }
       }
     };

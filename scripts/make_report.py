@@ -71,7 +71,7 @@ tr.group th { background: #e4e9f2; }
 .badge { font-size: 0.8em; padding: 0 0.35em; border-radius: 3px; white-space: nowrap; }
 figure { margin: 0.6em 0; }
 img { max-width: 100%; height: auto; border: 1px solid #ddd; }
-.plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(420px, 1fr)); gap: 0.6em; }
+.plots { display: grid; grid-template-columns: repeat(auto-fit, minmax(420px, 1fr)); gap: 0.6em; }
 .shapes { display: grid; grid-template-columns: repeat(auto-fill, minmax(260px, 1fr)); gap: 0.5em; }
 figcaption { font-size: 0.85em; color: #555; }
 pre { background: #f7f7f7; padding: 0.6em; overflow-x: auto; font-size: 0.8em; max-height: 30em; white-space: pre-wrap; }
