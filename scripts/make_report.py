@@ -357,9 +357,15 @@ def card_table1(out_dir):
     if not table:
         return None
     best = min(table, key=lambda row: float(row[1]) if row[1] else float("inf"))
-    return ("Table I: grasp temperature, model vs paper",
-            f"best {best[1]} degC" if best[1] else "no paper values",
-            [f"worst |model - paper| over the masses, best configuration: {best[0]}"],
+    calibrated = [float(row[1]) for (key, row) in zip(groups, table) if key[2] != "none" and row[1]]
+    uncalibrated = [float(row[1]) for (key, row) in zip(groups, table) if key[2] == "none" and row[1]]
+    if calibrated and uncalibrated:
+        headline = (f"{min(calibrated):.1f} degC calibrated, {min(uncalibrated):.1f} to "
+                    f"{max(uncalibrated):.1f} degC uncalibrated")
+    else:
+        headline = f"best {best[1]} degC" if best[1] else "no paper values"
+    return ("Table I: grasp temperature, model vs paper", headline,
+            [f"worst |model - paper| over the masses per configuration; best: {best[0]}"],
             (["configuration", "vs paper [degC]", "vs measured [degC]"], table),
             "validate_table1_grasp")
 

@@ -125,6 +125,20 @@ class MakeReportTest(unittest.TestCase):
         tables = page.count("<table")
         self.assertEqual(page.count('<div class="scroll"><table'), tables)
 
+    def test_the_table1_card_sets_calibrated_against_uncalibrated_paper_differences(self):
+        d = self.out / "validate_table1_grasp"
+        d.mkdir()
+        (d / "table1_grasp.csv").write_text(
+            "material,f12_form,calibration,mass_g,temperature_degC,measured_degC,paper_degC\n"
+            "m,paper,none,1,40.0,95,93.7\nm,paper,none,2,48.0,120,114.8\n"
+            "m,castigliano,expansion_scale=0.05,1,92.5,95,93.7\nm,castigliano,expansion_scale=0.05,2,120.0,120,114.8\n")
+        title, headline, _, table, anchor = make_report.card_table1(self.out)
+        self.assertEqual(anchor, "validate_table1_grasp")
+        # Worst over the masses: |48 - 114.8| = 66.8 uncalibrated, |120 - 114.8| = 5.2 calibrated.
+        self.assertEqual(headline, "5.2 degC calibrated, 66.8 to 66.8 degC uncalibrated")
+        self.assertEqual(table[1], [["m, f12 paper", "66.8", "72.0"],
+                                    ["m, f12 castigliano, expansion_scale=0.05", "5.2", "2.5"]])
+
 
 if __name__ == "__main__":
     unittest.main()
