@@ -1,7 +1,7 @@
 """Renders a report in headless Chromium (scripts/check_report_browser.py) and checks that the
 check can fail: a report of the fixture passes (images load, verdict in the first 1366 x 768
-viewport, no horizontal scrolling, the failures-only filter), the same report with a broken
-image fails naming it. The fixture, its report and the screenshot stay in OUT_DIR.
+viewport, no horizontal scrolling, the failures-only filter); the same report with a broken
+image, or with the verdict pushed below the first viewport, fails saying so. The fixture, its report and the screenshot stay in OUT_DIR.
 Usage: /usr/bin/python3 tests/scripts/report_browser_test.py OUT_DIR
 Exit code 0 pass, 1 fail, 77 skipped (no Chromium)."""
 import shutil
@@ -52,7 +52,17 @@ def main(argv):
     if rc != 1 or "validate_shapes/b_shape.png did not load" not in text:
         print(f"report_browser_test: FAILED: a broken image gave exit code {rc} without naming it")
         return 1
-    print("report_browser_test: passed (and a broken image is caught)")
+    # A verdict pushed below the first viewport must fail too.
+    low = out.parent / (out.name + "-low-verdict")
+    shutil.rmtree(low, ignore_errors=True)
+    shutil.copytree(out, low)
+    page = (low / "report.html").read_text()
+    (low / "report.html").write_text(page.replace("<body>", '<body>\n<div style="height: 900px"></div>', 1))
+    rc, text = run(ROOT / "scripts" / "check_report_browser.py", low)
+    if rc != 1 or "the verdict is not within the first 1366 x 768 viewport" not in text:
+        print(f"report_browser_test: FAILED: a verdict below the fold gave exit code {rc} without saying so")
+        return 1
+    print("report_browser_test: passed (and a broken image and a verdict below the fold are caught)")
     return 0
 
 
