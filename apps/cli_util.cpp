@@ -140,6 +140,27 @@ std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::s
   return std::make_shared<const tca::Tca>(p, std::move(m));
 }
 
+Shard parse_shard(const std::string& text, const std::string& flag) {
+  const std::size_t slash = text.find('/');
+  const auto integer = [&](const std::string& part, long long& v) {
+    if (part.empty() || part.size() > 18 ||
+        !std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return false;
+    v = std::stoll(part);
+    return true;
+  };
+  Shard s;
+  if (slash == std::string::npos || !integer(text.substr(0, slash), s.index) ||
+      !integer(text.substr(slash + 1), s.count)) {
+    throw InputError(flag, text, "must be I/N with whole numbers 0 <= I < N (e.g. 0/4)");
+  }
+  require(s.count >= 1 && s.count <= kMaxShards, flag, text,
+          fmt::format("needs a shard count N in [1, {}]", kMaxShards));
+  require(s.index < s.count, flag, text,
+          fmt::format("needs I < N: the {} shards are numbered 0 to {}", s.count, s.count - 1));
+  return s;
+}
+
 void require_count(long long value, const std::string& flag, long long lo, long long hi) {
   require(value >= lo && value <= hi, flag, static_cast<double>(value),
           fmt::format("must be an integer in [{}, {}]", lo, hi));

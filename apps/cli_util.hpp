@@ -27,12 +27,25 @@ inline constexpr int kMaxElements = 10000;
 /// Model evaluations of `tcasim fit` (each a TCA curve, microseconds): 100000 is minutes.
 inline constexpr int kMaxEvaluations = 100000;
 
+/// Worker threads of `tcasim sweep --jobs`: more than this many is a typo, not a machine.
+inline constexpr int kMaxJobs = 1024;
+/// Shards of `tcasim sweep --shard I/N`: a sweep has at most a million points (common/grid.hpp).
+inline constexpr long long kMaxShards = 1000000;
+
 /// Requires lo <= value <= hi for the count given by `flag` (`--steps = 1e9 must be ...`).
 void require_count(long long value, const std::string& flag, long long lo, long long hi);
 
 /// Parses "A:B:S" (start, stop, step; the inclusive grid of common/grid.hpp) or a single
 /// value "A". `flag` names the option in error messages.
 std::vector<double> parse_range(const std::string& text, const std::string& flag);
+
+/// Part I (0-based) of N of a job split (`--shard I/N`).
+struct Shard {
+  long long index = 0, count = 1;
+};
+/// Parses "I/N" (integers, 1 <= N <= kMaxShards, 0 <= I < N); InputError naming `flag`
+/// with the rule that fails otherwise.
+Shard parse_shard(const std::string& text, const std::string& flag);
 
 /// "X,Y,Z" -> vector (InputError naming `flag` unless exactly three finite numbers).
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag);

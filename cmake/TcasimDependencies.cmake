@@ -23,6 +23,9 @@ tcasim_require(CLI11_FOUND "CLI11" libcli11-dev)
 find_package(SUNDIALS 6.4 QUIET)
 tcasim_require(SUNDIALS_FOUND "SUNDIALS 6.4" libsundials-dev)
 
+# std::thread (parallel sweeps, common/parallel.hpp): the C library's threads.
+find_package(Threads REQUIRED)
+
 include(TcasimSuiteSparse)
 tcasim_require(TcasimSuiteSparse_FOUND "SuiteSparse (UMFPACK, KLU, CHOLMOD)" libsuitesparse-dev)
 

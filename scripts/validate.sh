@@ -3,6 +3,8 @@
 # scenarios, makes the plots and writes the report OUT_DIR/report.html (and its Markdown
 # twin report.md) with scripts/make_report.py. Exits non-zero if any gate fails, or any
 # program or plot script fails.
+# When Chromium is installed, the report is also rendered headless and checked (images,
+# verdict in view, screenshot OUT_DIR/report-screenshot.png; scripts/check_report_browser.py).
 # Usage: scripts/validate.sh [OUT_DIR]     (default: out/)
 #        env: TCASIM_BUILD_DIR (default build), TCASIM_JOBS (default 2)
 set -euo pipefail
@@ -89,6 +91,16 @@ report_rc=$?
 set -e
 if [ "$report_rc" -eq 2 ]; then failed+=("make_report.py"); fi
 if [ "$report_rc" -eq 1 ] && [ ${#failed[@]} -eq 0 ]; then failed+=("failed gates or programs without gates (see report)"); fi
+# The page as a reader sees it (headless Chromium: images load, verdict in the first
+# viewport, out/report-screenshot.png) when Chromium is installed; scripts/check_report.sh
+# installs it and runs the same check.
+if [ "$report_rc" -ne 2 ]; then
+  set +e
+  "$py" "$root/scripts/check_report_browser.py" "$out" | sed -u 's/^/[validate]   /'
+  browser_rc=${PIPESTATUS[0]}
+  set -e
+  if [ "$browser_rc" -eq 1 ]; then failed+=("report rendering (check_report_browser.py)"); fi
+fi
 
 echo "[validate] 5/5 verdict"
 if [ ${#failed[@]} -gt 0 ]; then
