@@ -23,6 +23,7 @@
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
+#include "study/sweep.hpp"
 
 namespace tcasim::app {
 
@@ -164,12 +165,7 @@ void add_solve_command(CLI::App& app) {
 
 namespace {
 
-/// Points of a sweep chunk by default (`--chunk`): each chunk starts cold and warm-starts
-/// its points in order, so the chunks are independent and the threads of `--jobs` and the
-/// shards of `--shard` give the numbers of the serial run, bit for bit. With 100 points the
-/// extra cold starts cost little: +1.4 % CPU time on a 1001-point shooting sweep of the
-/// circular manipulator (docs/scenario-format.md "Sweeps in chunks").
-constexpr long long kDefaultSweepChunk = 100;
+using study::kDefaultSweepChunk;
 
 /// One CSV row of a sweep point (the columns of the header in add_sweep_command).
 std::string sweep_row(double value, const rod::Result& r) {
@@ -266,15 +262,16 @@ void add_sweep_command(CLI::App& app) {
       }
     }
 
-    // The options of either method, validated here (once, before any thread starts).
-    const bool fe = flags->method == "fe";
-    std::optional<beam_fe::Options> fe_opts;
-    std::optional<cosserat::Options> shooting_opts;
-    if (fe) {
-      fe_opts = fe_options(flags->fe);
+    // The sweep with either method's options, validated here (before any thread starts).
+    study::Sweep sweep;
+    sweep.actuator = index;
+    sweep.by_temperature = by_temperature;
+    for (double v : values) sweep.values.push_back(by_temperature ? units::degC_to_K(v) : v);
+    if (flags->method == "fe") {
+      sweep.fe = fe_options(flags->fe);
     } else {
-      shooting_opts = cosserat_options(flags->integrator);
-      (void)cosserat::ShootingSolver(model, *shooting_opts);  // InputError for bad options
+      sweep.shooting = cosserat_options(flags->integrator);
+      (void)cosserat::ShootingSolver(model, *sweep.shooting);  // InputError for bad options
     }
 
     // Chunks of --chunk points; this shard's part of them (all without --shard).
@@ -318,39 +315,16 @@ void add_sweep_command(CLI::App& app) {
     std::vector<char> chunk_done(mine.size(), 0);
     std::size_t next_chunk = 0, done = 0;
     int failures = 0;
-    const auto solve_chunk = [&](std::size_t c) {
-      const IndexRange range = chunks[mine.begin + c];
-      // A cold start for every chunk: fresh loads, solver and state, whatever ran before.
-      rod::Loads loads = rod::Loads::from_model(model);
-      std::optional<cosserat::ShootingSolver> shooting;
-      cosserat::Solution solution;
-      beam_fe::State fe_state;
-      if (!fe) shooting.emplace(model, *shooting_opts);
-      int chunk_failures = 0;
-      for (std::size_t k = range.begin; k < range.end; ++k) {
-        if (by_temperature) {
-          loads.set_temperature_K(index, units::degC_to_K(values[k]));
-        } else {
-          loads.set_tension_N(index, values[k]);
-        }
-        rod::Result r;
-        if (fe) {
-          const beam_fe::Summary summary = beam_fe::solve(model, loads, *fe_opts, fe_state);
-          r = beam_fe::make_result(model, loads, *fe_opts, fe_state, summary);
-        } else {
-          const cosserat::Summary summary = shooting->solve(loads, solution);
-          r = shooting->make_result(loads, solution, summary);
-        }
-        if (!r.converged) ++chunk_failures;
-        rows[k - first] = sweep_row(values[k], r);
-        if (progress) {
-          const std::lock_guard<std::mutex> lock(mutex);
-          progress->update(++done);
-        }
-      }
+    const auto on_point = [&](std::size_t k, rod::Result&& r) {
+      const std::string row = sweep_row(values[k], r);
       const std::lock_guard<std::mutex> lock(mutex);
-      failures += chunk_failures;
-      chunk_done[c] = 1;
+      if (!r.converged) ++failures;
+      rows[k - first] = row;
+      if (progress) progress->update(++done);
+    };
+    const auto on_chunk_done = [&](std::size_t c) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      chunk_done[c - mine.begin] = 1;
       for (; next_chunk < mine.size() && chunk_done[next_chunk]; ++next_chunk) {
         const IndexRange written = chunks[mine.begin + next_chunk];
         for (std::size_t k = written.begin; k < written.end; ++k) {
@@ -359,7 +333,7 @@ void add_sweep_command(CLI::App& app) {
         }
       }
     };
-    run_parallel(mine.size(), flags->jobs, solve_chunk);
+    study::solve_chunks(model, sweep, chunks, mine, flags->jobs, on_point, on_chunk_done);
     out.commit();
     if (failures > 0) {
       fmt::print(stderr,

@@ -2,7 +2,7 @@
 # data and the `tcasim` program under the prefix, with a CMake package so a project can
 #   find_package(tcasim 0.1 REQUIRED)
 #   target_link_libraries(app PRIVATE tcasim::tcasim)        # or single components
-# Components (exported names): tcasim::common, tca, rod, cosserat, beam_fe, crosscheck;
+# Components (exported names): tcasim::common, tca, rod, cosserat, beam_fe, crosscheck, study;
 # tcasim::tcasim links them all. Layout:
 #   <prefix>/include/tcasim/...            headers (as under src/: "rod/scenario.hpp");
 #                                          the umbrella header is <tcasim/tcasim.hpp>
@@ -13,7 +13,7 @@
 #   <prefix>/bin/tcasim                    the command-line program
 include(CMakePackageConfigHelpers)
 
-set(TCASIM_COMPONENTS common tca rod cosserat beam_fe crosscheck)
+set(TCASIM_COMPONENTS common tca rod cosserat beam_fe crosscheck study)
 set(TCASIM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/tcasim")
 
 # The umbrella target: every component. Its target name differs from the `tcasim` program's.

@@ -5,14 +5,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "apps/cli_util.hpp"
@@ -25,6 +21,7 @@
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/vtk.hpp"
+#include "study/sweep.hpp"
 
 namespace tcasim::python {
 
@@ -189,11 +186,6 @@ std::optional<std::string> fspath(const py::object& p) {
   if (p.is_none()) return std::nullopt;
   return py::module_::import("os").attr("fspath")(p).cast<std::string>();
 }
-
-/// Points per sweep chunk by default, as `tcasim sweep --chunk`: each chunk starts cold.
-constexpr long long kSweepChunk = 100;
-/// Threads of a sweep: more than this many is a typo, not a machine (`tcasim sweep --jobs`).
-constexpr int kMaxSweepJobs = 1024;
 
 /// Keeps a benchmarked result alive (the compiler may not drop the solve).
 void benchmark_sink(const rod::Result& r) {
@@ -438,72 +430,27 @@ the solver runs.)") +
         }
         const SolveOptions f{steps,    scheme, rtol,        no_planar,
                              elements, order,  integration, linear_solver};
-        app::require_count(jobs, "jobs", 1, kMaxSweepJobs);
+        app::require_count(jobs, "jobs", 1, app::kMaxJobs);
         app::require_count(chunk, "chunk", 1, 1000000);
-        const bool fe = method == "fe";
         // Options first, so a bad one is reported before any solve.
-        std::optional<cosserat::Options> shooting_opts;
-        std::optional<beam_fe::Options> fe_opts;
-        if (fe) {
-          fe_opts = fe_options(f);
+        study::Sweep sw;
+        sw.actuator = index;
+        sw.by_temperature = by_temperature;
+        for (double v : values) sw.values.push_back(by_temperature ? units::degC_to_K(v) : v);
+        if (method == "fe") {
+          sw.fe = fe_options(f);
         } else {
-          shooting_opts = cosserat_options(f);
+          sw.shooting = cosserat_options(f);
         }
         std::vector<rod::Result> results(values.size());
         {
           py::gil_scoped_release release;
-          // As `tcasim sweep --chunk K --jobs N`: chunks of K consecutive points, each
-          // starting cold (fresh loads, solver and state) and warm-starting its points in
-          // order, so the threads give the numbers of the serial run bit for bit.
-          std::vector<std::pair<std::size_t, std::size_t>> chunks;
-          for (std::size_t b = 0; b < values.size(); b += static_cast<std::size_t>(chunk)) {
-            chunks.emplace_back(b, std::min(values.size(), b + static_cast<std::size_t>(chunk)));
-          }
-          const auto solve_chunk = [&](std::size_t c) {
-            rod::Loads loads = rod::Loads::from_model(model);
-            std::optional<cosserat::ShootingSolver> shooting;
-            cosserat::Solution solution;
-            beam_fe::State fe_state;
-            if (!fe) shooting.emplace(model, *shooting_opts);
-            for (std::size_t k = chunks[c].first; k < chunks[c].second; ++k) {
-              if (by_temperature) {
-                loads.set_temperature_K(index, units::degC_to_K(values[k]));
-              } else {
-                loads.set_tension_N(index, values[k]);
-              }
-              if (fe) {
-                const beam_fe::Summary summary = beam_fe::solve(model, loads, *fe_opts, fe_state);
-                results[k] = beam_fe::make_result(model, loads, *fe_opts, fe_state, summary);
-              } else {
-                const cosserat::Summary summary = shooting->solve(loads, solution);
-                results[k] = shooting->make_result(loads, solution, summary);
-              }
-            }
-          };
-          std::atomic<std::size_t> next{0};
-          std::atomic<bool> stop{false};
-          std::mutex error_mutex;
-          std::exception_ptr first_error;
-          const auto work = [&] {
-            while (!stop.load()) {
-              const std::size_t c = next.fetch_add(1);
-              if (c >= chunks.size()) return;
-              try {
-                solve_chunk(c);
-              } catch (...) {
-                const std::lock_guard<std::mutex> lock(error_mutex);
-                if (!first_error) first_error = std::current_exception();
-                stop.store(true);
-              }
-            }
-          };
-          const std::size_t threads =
-              std::min<std::size_t>(static_cast<std::size_t>(jobs), chunks.size());
-          std::vector<std::thread> pool;
-          for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-          work();
-          for (auto& t : pool) t.join();
-          if (first_error) std::rethrow_exception(first_error);
+          // As `tcasim sweep --chunk K --jobs N` (study/sweep.hpp): chunks of K consecutive
+          // points, each starting cold, so the threads give the numbers of the serial run.
+          const std::vector<IndexRange> chunks =
+              fixed_chunks(values.size(), static_cast<std::size_t>(chunk));
+          study::solve_chunks(model, sw, chunks, IndexRange{0, chunks.size()}, jobs,
+                              [&](std::size_t k, rod::Result&& r) { results[k] = std::move(r); });
         }
         // Columns of the CSV of `tcasim sweep`, in its order (numbers unrounded).
         const auto n = static_cast<py::ssize_t>(values.size());
@@ -572,7 +519,7 @@ the solver runs.)") +
       py::arg("method") = "cosserat", py::arg("steps") = py::none(), py::arg("scheme") = py::none(),
       py::arg("rtol") = py::none(), py::arg("no_planar") = false, py::arg("elements") = 16,
       py::arg("order") = 2, py::arg("integration") = "reduced", py::arg("linear_solver") = "klu",
-      py::arg("jobs") = 1, py::arg("chunk") = kSweepChunk,
+      py::arg("jobs") = 1, py::arg("chunk") = study::kDefaultSweepChunk,
       (std::string(R"(Solves a scenario over a range of one actuator's temperature or tension,
 as `tcasim sweep` (the same numbers): in chunks of `chunk` consecutive points, each
 starting cold and warm-starting its points in order, solved on `jobs` threads (the GIL

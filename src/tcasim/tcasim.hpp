@@ -7,7 +7,8 @@
 ///  - rod: rod models, scenario files, results;
 ///  - cosserat: the Cosserat-rod shooting solver, inverse kinetostatics and grasps;
 ///  - beam_fe: the geometrically exact beam finite-element solver;
-///  - crosscheck: cross-checks of the two solvers and FE convergence studies.
+///  - crosscheck: cross-checks of the two solvers and FE convergence studies;
+///  - study: sweeps of one actuator with either solver, in cold-started chunks.
 #include "beam_fe/beam_fe.hpp"
 #include "common/data_dir.hpp"
 #include "common/error.hpp"
@@ -18,5 +19,6 @@
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "study/sweep.hpp"
 #include "tca/calibration.hpp"
 #include "tca/tca.hpp"
