@@ -146,10 +146,24 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
     }
   }
   bool loaded_guess = false;
-  Eigen::VectorXd x = warm ? sol.unknowns : initial_guess(act, 1.0, true, &loaded_guess);
+  Eigen::VectorXd x;
   Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
-  Summary::Status st = direct_solve(act, sol, warm, x, J, summary, why);
-  if (st != Summary::Status::kConverged && loaded_guess) {
+  // A warm point farther from convergence than the cold path's start runs the cold path
+  // (with the warm Jacobian on the coarse level), and the warm start only if that fails.
+  const bool start_warm = warm && warm_start_pays(act, sol, J, x, loaded_guess);
+  if (start_warm) {
+    x = sol.unknowns;
+  } else if (!warm) {
+    x = initial_guess(act, 1.0, true, &loaded_guess);
+  }
+  Summary::Status st = direct_solve(act, sol, start_warm, x, J, summary, why);
+  if (st != Summary::Status::kConverged && warm && !start_warm) {
+    x = sol.unknowns;
+    J = sol.jacobian;
+    std::string warm_why;
+    st = direct_solve(act, sol, true, x, J, summary, warm_why);
+    why = "from the guess: " + why + "; from the warm start: " + warm_why;
+  } else if (st != Summary::Status::kConverged && loaded_guess) {
     // Strong gravity can bend the guess toward another equilibrium or out of Newton's
     // reach: retry from the guess without it before continuation.
     x = initial_guess(act, 1.0, false);

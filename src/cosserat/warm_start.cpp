@@ -2,6 +2,7 @@
 // level, middle level and Richardson extrapolation), the warm start's coarse-grid
 // correction and TCA-row refresh, and the path extrapolation of sweeps (Solution::path).
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,10 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
     const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
     if ((!warm || warm_coarse) && !warm_fine) {
       Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
+      // Cold: J is empty, or the Jacobian of a warm start that warm_start_pays turned down
+      // (close to the coarse one: it saves the coarse sensitivity IVP).
       Eigen::MatrixXd Jc =
-          warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian : Eigen::MatrixXd();
+          warm ? (sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian : Eigen::MatrixXd()) : J;
       std::string coarse_why;
       level = &*coarse_level;
       const Summary::Status sc = newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
@@ -73,6 +76,34 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
   sol.coarse_jacobian = coarse_J;
   if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
   return newton(act, 1.0, x, J, summary, why, options.tolerance);
+}
+
+bool ShootingSolver::Impl::warm_start_pays(const Actuation& act, const Solution& sol,
+                                           const Eigen::MatrixXd& J, Eigen::VectorXd& x_cold,
+                                           bool& loaded_guess) {
+  // Only where the warm start would go straight to the fine level (direct_solve).
+  if (!coarse_level || J.rows() != nx || !options.warm_start_fine_only) return true;
+  Eigen::VectorXd r;
+  const double one_step = std::sqrt(options.tolerance);
+  set_parameters(act, 1.0, sol.unknowns);
+  if (memo_answers(sol.unknowns) && residual(act, 1.0, sol.unknowns, r) &&
+      r.lpNorm<Eigen::Infinity>() <= one_step) {
+    return true;
+  }
+  level = &*coarse_level;
+  const double warm_residual = residual(act, 1.0, sol.unknowns, r)
+                                   ? r.lpNorm<Eigen::Infinity>()
+                                   : std::numeric_limits<double>::infinity();
+  bool pays = true;
+  if (!(warm_residual <= one_step)) {
+    x_cold = initial_guess(act, 1.0, true, &loaded_guess);
+    if (residual(act, 1.0, x_cold, r) && r.lpNorm<Eigen::Infinity>() < warm_residual) {
+      pays = false;
+      remember(1.0, x_cold);  // the cold path's first coarse residual is then the memo's
+    }
+  }
+  level = &fine_level;
+  return pays;
 }
 
 void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,
