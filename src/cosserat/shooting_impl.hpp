@@ -93,16 +93,18 @@ struct ShootingSolver::Impl : internal::TipConditions {
   Summary::Status direct_solve(const Actuation& act, Solution& sol, bool warm, Eigen::VectorXd& x,
                                Eigen::MatrixXd& J, Summary& summary, std::string& why);
   /// The cost check of a warm start that would go straight to the fine level (a coarse level,
-  /// a Jacobian J, Options::warm_start_fine_only): decided on the coarse level before any fine
+  /// a Jacobian J, Options::warm_start_fine_only), decided on the coarse level before any fine
   /// IVP. The cold path's fine level starts at the Richardson extrapolation of the coarse and
   /// middle solutions (within their discretization error of the fine solution, one or two
   /// fine IVPs from convergence), while the fine Newton iteration from a warm point costs one
-  /// fine IVP per step; so a warm point whose scaled coarse residual exceeds sqrt(tolerance)
-  /// (more than one Newton step from convergence) must beat the cold guess's coarse residual
-  /// to be used. A fine residual the IVP memo answers (an unchanged IVP) decides first,
-  /// without any IVP. Returns false (with x_cold the guess, loaded_guess as initial_guess sets it,
-  /// and the memo at the guess on the coarse level) when the cold path should run; costs one
-  /// coarse IVP, two and the guess when the warm point is that far.
+  /// fine IVP per step. So a warm point whose scaled coarse residual exceeds sqrt(tolerance)
+  /// (more than one Newton step from convergence) is used only if its Newton step J^-1 r to
+  /// the coarse solution (each unknown relative to its size) is not longer than the cold
+  /// guess's. A warm point whose fine IVP the memo answers (only temperatures or tip loads
+  /// changed: the fine residual is free, the refreshed Jacobian near exact) is always used.
+  /// Returns false (with x_cold the guess, loaded_guess as initial_guess sets it, and the
+  /// memo at the guess on the coarse level) when the cold path should run; costs one coarse
+  /// IVP, or two and the guess when the warm point is that far.
   bool warm_start_pays(const Actuation& act, const Solution& sol, const Eigen::MatrixXd& J,
                        Eigen::VectorXd& x_cold, bool& loaded_guess);
   /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
