@@ -185,15 +185,15 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
   return done(st, why, x);
 }
 
-double ShootingSolver::Impl::equilibrium_residual(const Actuation& act,
-                                                  const Eigen::VectorXd& r) const {
+double ShootingSolver::Impl::equilibrium_residual(const Eigen::VectorXd& r,
+                                                  double characteristic_force_N) const {
   const double k_c = K_nu.maxCoeff();  // constraint rows hold c . (p - p_target) / L
   double force = 0.0;
   for (int i = 0; i < r.size(); ++i) {
     const bool constraint = n_con > 0 && i >= k_con && i < k_con + n_con;
     force = std::max(force, std::abs(r[i]) * (constraint ? k_c : Fc));
   }
-  return force / rod::characteristic_force_N(model, act);
+  return force / characteristic_force_N;
 }
 
 void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol,
@@ -214,7 +214,8 @@ void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x
     return;
   }
   sol.tip_state = y;
-  if (r.size() == nx) summary.equilibrium_residual = equilibrium_residual(act, r);
+  if (r.size() == nx)
+    summary.equilibrium_residual = equilibrium_residual(r, summary.characteristic_force_N);
   for (int i = 0; i < n_act; ++i) {
     sol.tensions_N[i] = cT[i] / count[i];
     sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];

@@ -41,8 +41,9 @@ struct ShootingSolver::Impl : internal::TipConditions {
   Summary solve(const Actuation& act, Solution& sol);
   /// Sets sol's unknowns, tensions, elongations and tip state at x (full load) and the
   /// summary's global equilibrium (3-D only).
-  /// Summary::equilibrium_residual of the scaled residual r at full load.
-  double equilibrium_residual(const Actuation& act, const Eigen::VectorXd& r) const;
+  /// Summary::equilibrium_residual of the scaled residual r at full load, with F_c of the
+  /// solve's loads (rod::characteristic_force_N, computed once per solve by finish()).
+  double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
   rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
 
