@@ -3,97 +3,15 @@
 #include <cassert>
 #include <cmath>
 
+#include "common/dual.hpp"
+
 namespace tcasim::cosserat::planar {
 namespace {
 
-/// Forward-mode dual number with N directional derivatives (fixed size, no heap). No default
-/// member initializers: the work arrays below are filled before use, and `Dual<N>()`
-/// (value-initialization) is zero.
+/// The library's dual number (common/dual.hpp) with N directional derivatives.
 template <int N>
-struct Dual {
-  double v;
-  double d[N];
-};
-
-template <int N>
-Dual<N> operator+(const Dual<N>& a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a.v + b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = a.d[k] + b.d[k];
-  return r;
-}
-template <int N>
-Dual<N> operator-(const Dual<N>& a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a.v - b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = a.d[k] - b.d[k];
-  return r;
-}
-template <int N>
-Dual<N> operator-(const Dual<N>& a) {
-  Dual<N> r;
-  r.v = -a.v;
-  for (int k = 0; k < N; ++k) r.d[k] = -a.d[k];
-  return r;
-}
-template <int N>
-Dual<N> operator*(const Dual<N>& a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a.v * b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = a.d[k] * b.v + a.v * b.d[k];
-  return r;
-}
-template <int N>
-Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a.v / b.v;
-  const double inv = 1.0 / b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = (a.d[k] - r.v * b.d[k]) * inv;
-  return r;
-}
-template <int N>
-Dual<N> operator+(const Dual<N>& a, double b) {
-  Dual<N> r = a;
-  r.v += b;
-  return r;
-}
-template <int N>
-Dual<N> operator-(const Dual<N>& a, double b) {
-  Dual<N> r = a;
-  r.v -= b;
-  return r;
-}
-template <int N>
-Dual<N> operator+(double a, const Dual<N>& b) {
-  return b + a;
-}
-template <int N>
-Dual<N> operator*(double a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a * b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = a * b.d[k];
-  return r;
-}
-template <int N>
-Dual<N> operator*(const Dual<N>& a, double b) {
-  return b * a;
-}
-template <int N>
-Dual<N> operator/(double a, const Dual<N>& b) {
-  Dual<N> r;
-  r.v = a / b.v;
-  const double s = -r.v / b.v;
-  for (int k = 0; k < N; ++k) r.d[k] = s * b.d[k];
-  return r;
-}
-template <int N>
-Dual<N> sqrt(const Dual<N>& a) {
-  Dual<N> r;
-  r.v = std::sqrt(a.v);
-  const double s = 0.5 / r.v;
-  for (int k = 0; k < N; ++k) r.d[k] = s * a.d[k];
-  return r;
-}
+using Dual = ad::Dual<double, N>;
+using ad::sqrt;
 using std::sqrt;
 
 /// Unit string direction qh = q / |q| in the plane, q = nu + omega x r = (nu_x, nu_z - kappa rho).

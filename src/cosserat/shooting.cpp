@@ -146,10 +146,24 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
     }
   }
   bool loaded_guess = false;
-  Eigen::VectorXd x = warm ? sol.unknowns : initial_guess(act, 1.0, true, &loaded_guess);
+  Eigen::VectorXd x;
   Eigen::MatrixXd J = (warm && sol.jacobian.rows() == nx) ? sol.jacobian : Eigen::MatrixXd();
-  Summary::Status st = direct_solve(act, sol, warm, x, J, summary, why);
-  if (st != Summary::Status::kConverged && loaded_guess) {
+  // A warm point farther from convergence than the cold path's start runs the cold path
+  // (with the warm Jacobian on the coarse level), and the warm start only if that fails.
+  const bool start_warm = warm && warm_start_pays(act, sol, J, x, loaded_guess);
+  if (start_warm) {
+    x = sol.unknowns;
+  } else if (!warm) {
+    x = initial_guess(act, 1.0, true, &loaded_guess);
+  }
+  Summary::Status st = direct_solve(act, sol, start_warm, x, J, summary, why);
+  if (st != Summary::Status::kConverged && warm && !start_warm) {
+    x = sol.unknowns;
+    J = sol.jacobian;
+    std::string warm_why;
+    st = direct_solve(act, sol, true, x, J, summary, warm_why);
+    why = "from the guess: " + why + "; from the warm start: " + warm_why;
+  } else if (st != Summary::Status::kConverged && loaded_guess) {
     // Strong gravity can bend the guess toward another equilibrium or out of Newton's
     // reach: retry from the guess without it before continuation.
     x = initial_guess(act, 1.0, false);
@@ -171,15 +185,15 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
   return done(st, why, x);
 }
 
-double ShootingSolver::Impl::equilibrium_residual(const Actuation& act,
-                                                  const Eigen::VectorXd& r) const {
+double ShootingSolver::Impl::equilibrium_residual(const Eigen::VectorXd& r,
+                                                  double characteristic_force_N) const {
   const double k_c = K_nu.maxCoeff();  // constraint rows hold c . (p - p_target) / L
   double force = 0.0;
   for (int i = 0; i < r.size(); ++i) {
     const bool constraint = n_con > 0 && i >= k_con && i < k_con + n_con;
     force = std::max(force, std::abs(r[i]) * (constraint ? k_c : Fc));
   }
-  return force / rod::characteristic_force_N(model, act);
+  return force / characteristic_force_N;
 }
 
 void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol,
@@ -200,7 +214,8 @@ void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x
     return;
   }
   sol.tip_state = y;
-  if (r.size() == nx) summary.equilibrium_residual = equilibrium_residual(act, r);
+  if (r.size() == nx)
+    summary.equilibrium_residual = equilibrium_residual(r, summary.characteristic_force_N);
   for (int i = 0; i < n_act; ++i) {
     sol.tensions_N[i] = cT[i] / count[i];
     sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];

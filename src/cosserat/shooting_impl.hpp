@@ -41,8 +41,9 @@ struct ShootingSolver::Impl : internal::TipConditions {
   Summary solve(const Actuation& act, Solution& sol);
   /// Sets sol's unknowns, tensions, elongations and tip state at x (full load) and the
   /// summary's global equilibrium (3-D only).
-  /// Summary::equilibrium_residual of the scaled residual r at full load.
-  double equilibrium_residual(const Actuation& act, const Eigen::VectorXd& r) const;
+  /// Summary::equilibrium_residual of the scaled residual r at full load, with F_c of the
+  /// solve's loads (rod::characteristic_force_N, computed once per solve by finish()).
+  double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
   rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
 
@@ -52,6 +53,9 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// Residual and its exact Jacobian from one augmented IVP (kSensitivity).
   bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                              Eigen::VectorXd& r, Eigen::MatrixXd& J);
+  /// Whether the memo holds y(L) of the IVP from x with the parameters last set
+  /// (set_parameters) on the active level.
+  bool memo_answers(const Eigen::VectorXd& x) const;
   /// Records x (at load fraction lambda, the active level) as the accepted point of the IVP
   /// memo: y(L), the IVP parameters and the contact derivatives there.
   void remember(double lambda, const Eigen::VectorXd& x);
@@ -84,10 +88,26 @@ struct ShootingSolver::Impl : internal::TipConditions {
 
   // --- warm starts and the multi-level start (warm_start.cpp)
   /// Direct solve at full load from x (warm: the previous solution, J its Jacobian; cold: the
-  /// guess, J empty) with the two-level start (Options::coarse_steps); on return x and J are
-  /// the last accepted point and its Jacobian, and sol's coarse fields are set.
+  /// guess, J empty or a warm start's Jacobian for the coarse level) with the two-level start
+  /// (Options::coarse_steps); on return x and J are the last accepted point and its Jacobian, and
+  /// sol's coarse fields are set.
   Summary::Status direct_solve(const Actuation& act, Solution& sol, bool warm, Eigen::VectorXd& x,
                                Eigen::MatrixXd& J, Summary& summary, std::string& why);
+  /// The cost check of a warm start that would go straight to the fine level (a coarse level,
+  /// a Jacobian J, Options::warm_start_fine_only), decided on the coarse level before any fine
+  /// IVP. The cold path's fine level starts at the Richardson extrapolation of the coarse and
+  /// middle solutions (within their discretization error of the fine solution, one or two
+  /// fine IVPs from convergence), while the fine Newton iteration from a warm point costs one
+  /// fine IVP per step. So a warm point whose scaled coarse residual exceeds sqrt(tolerance)
+  /// (more than one Newton step from convergence) is used only if its Newton step J^-1 r to
+  /// the coarse solution (each unknown relative to its size) is not longer than the cold
+  /// guess's. A warm point whose fine IVP the memo answers (only temperatures or tip loads
+  /// changed: the fine residual is free, the refreshed Jacobian near exact) is always used.
+  /// Returns false (with x_cold the guess, loaded_guess as initial_guess sets it, and the
+  /// memo at the guess on the coarse level) when the cold path should run; costs one coarse
+  /// IVP, or two and the guess when the warm point is that far.
+  bool warm_start_pays(const Actuation& act, const Solution& sol, const Eigen::MatrixXd& J,
+                       Eigen::VectorXd& x_cold, bool& loaded_guess);
   /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
   /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
   /// removes the leading O(h^p) term (p: the method's order, 4, 6 or 8) of the discretization

@@ -15,8 +15,7 @@ bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const E
                                     Eigen::VectorXd& r) {
   if (!all_finite(x)) return false;
   set_parameters(act, lambda, x);
-  if (memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x && acc_cT == cT &&
-      acc_f_ext == f_ext_W) {
+  if (memo_answers(x)) {
     y = y_acc;  // same IVP as the last accepted one: no integration
     return tip_residual(act, lambda, x, y, r);
   }
@@ -41,6 +40,11 @@ bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double la
   y = Y.head(dim);
   if (!tip_residual(act, lambda, x, y, r)) return false;
   return tip_jacobian(act, lambda, x, y, Y, J);
+}
+
+bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x) const {
+  return memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x &&
+         acc_cT == cT && acc_f_ext == f_ext_W;
 }
 
 void ShootingSolver::Impl::remember(double lambda, const Eigen::VectorXd& x) {

@@ -1,7 +1,10 @@
 // Starting points of the fine-level Newton iteration: the multi-level cold start (coarse
 // level, middle level and Richardson extrapolation), the warm start's coarse-grid
 // correction and TCA-row refresh, and the path extrapolation of sweeps (Solution::path).
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -48,8 +51,10 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
     const bool warm_fine = warm && J.rows() == nx && options.warm_start_fine_only;
     if ((!warm || warm_coarse) && !warm_fine) {
       Eigen::VectorXd xc = warm ? sol.coarse_unknowns : x;
+      // Cold: J is empty, or the Jacobian of a warm start that warm_start_pays turned down
+      // (close to the coarse one: it saves the coarse sensitivity IVP).
       Eigen::MatrixXd Jc =
-          warm && sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian : Eigen::MatrixXd();
+          warm ? (sol.coarse_jacobian.rows() == nx ? sol.coarse_jacobian : Eigen::MatrixXd()) : J;
       std::string coarse_why;
       level = &*coarse_level;
       const Summary::Status sc = newton(act, 1.0, xc, Jc, summary, coarse_why, kCoarseTolerance);
@@ -73,6 +78,45 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
   sol.coarse_jacobian = coarse_J;
   if (warm && J.rows() == nx && coarse_x.size() == 0) refresh_tca_rows(act, x, J);
   return newton(act, 1.0, x, J, summary, why, options.tolerance);
+}
+
+bool ShootingSolver::Impl::warm_start_pays(const Actuation& act, const Solution& sol,
+                                           const Eigen::MatrixXd& J, Eigen::VectorXd& x_cold,
+                                           bool& loaded_guess) {
+  // Only where the warm start would go straight to the fine level (direct_solve).
+  if (!coarse_level || J.rows() != nx || !options.warm_start_fine_only) return true;
+  // An IVP the memo answers: only temperatures or tip loads changed, which enter the tip
+  // residual alone; the fine residual is free and refresh_tca_rows updates the Jacobian.
+  const Eigen::VectorXd& xw = sol.unknowns;
+  set_parameters(act, 1.0, xw);
+  if (memo_answers(xw)) return true;
+  Eigen::VectorXd r;
+  level = &*coarse_level;
+  const bool warm_ok = residual(act, 1.0, xw, r);
+  bool pays = true;
+  if (!warm_ok || r.lpNorm<Eigen::Infinity>() > std::sqrt(options.tolerance)) {
+    x_cold = initial_guess(act, 1.0, true, &loaded_guess);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    const Eigen::VectorXd dw = warm_ok ? Eigen::VectorXd(lu.solve(r)) : Eigen::VectorXd();
+    if (residual(act, 1.0, x_cold, r)) {
+      // Newton's steps to the coarse solution, each unknown relative to its size.
+      const Eigen::VectorXd dc = lu.solve(r);
+      double step_w = warm_ok ? 0.0 : std::numeric_limits<double>::infinity(), step_c = 0.0;
+      for (int i = 0; i < nx; ++i) {
+        const double size = std::max(std::abs(xw[i]), std::abs(x_cold[i]));
+        if (!(size > 0.0)) continue;
+        if (warm_ok) step_w = std::max(step_w, std::abs(dw[i]) / size);
+        step_c = std::max(step_c, std::abs(dc[i]) / size);
+      }
+      if (step_c < step_w) {
+        pays = false;
+        remember(1.0, x_cold);  // the cold path's first coarse residual is then the memo's
+      }
+    }
+    if (pays) loaded_guess = false;
+  }
+  level = &fine_level;
+  return pays;
 }
 
 void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,

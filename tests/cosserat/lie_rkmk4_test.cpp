@@ -282,6 +282,46 @@ TEST(WarmStart, UnchangedActuationConvergesWithoutAnIvp) {
   EXPECT_EQ(again.ivp_count, 0) << "the IVP memo should answer the first residual";
 }
 
+// The cost check of warm starts (warm_start_pays): a warm point farther from convergence
+// than the cold guess runs the cold path, whose fine level starts at the extrapolation of
+// the coarse and middle solutions; a near one still goes straight to the fine level.
+TEST(WarmStart, AWarmPointFartherThanTheGuessTakesTheColdPath) {
+  const rod::RodModel m = testing::steel_tendon_rod();
+  Options o = rk4_options(100, 1e-10);
+  ShootingSolver solver(m, o);
+  const Actuation act = Actuation::from_model(m);
+  Solution cold;
+  ASSERT_TRUE(solver.solve(act, cold).converged());
+  Solution warm = cold;
+  warm.unknowns *= 1.0 + 1e-3;  // scaled coarse residual ~7e-4, the guess's ~6e-6
+  warm.path.clear();
+  // Newton on the fine level from the warm point needs 3 iterations; the cold path one per
+  // level.
+  o.max_iterations = 2;
+  o.continuation = false;
+  ShootingSolver strict(m, o);
+  const Summary s = strict.solve(act, warm);
+  ASSERT_TRUE(s.converged()) << s.message;
+  EXPECT_LE((warm.unknowns - cold.unknowns).lpNorm<Eigen::Infinity>(),
+            1e-12 * cold.unknowns.lpNorm<Eigen::Infinity>());
+}
+
+TEST(WarmStart, ANearWarmPointGoesStraightToTheFineLevel) {
+  rod::RodModel m = testing::steel_tendon_rod();
+  ShootingSolver solver(m, rk4_options(100, 1e-10));
+  Actuation act = Actuation::from_model(m);
+  Solution sol;
+  const Summary cold = solver.solve(act, sol);
+  ASSERT_TRUE(cold.converged());
+  sol.path.clear();
+  act.actuators[0].tension_N *= 1.0 + 1e-7;  // a step the previous Jacobian takes at once
+  const Summary warm = solver.solve(act, sol);
+  ASSERT_TRUE(warm.converged()) << warm.message;
+  // One coarse IVP for the check, the fine residuals at the start and after one step.
+  EXPECT_LE(warm.ivp_count, 3) << "cold: " << cold.ivp_count;
+  EXPECT_LT(warm.ivp_count, cold.ivp_count);
+}
+
 // --------------------------------------------------------------------------------------
 // Multi-level cold start and coarse-level Jacobians (Options::coarse_steps).
 
