@@ -90,7 +90,11 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
       }
     }
   }
-  nodal_dead_load_.segment<3>(6 * (nodes - 2)) += model.tip_force_W_N;
+  // Tip force and the tip mass's weight m g (rod::tip_force_with_weight_W_N).
+  nodal_dead_load_.segment<3>(6 * (nodes - 2)) +=
+      model.tip_mass_kg == 0.0
+          ? model.tip_force_W_N
+          : Vector3d(model.tip_force_W_N + model.tip_mass_kg * model.gravity_W_m_s2);
 
   // Tip constraint: held world directions (all three when pinned, the normal for a contact),
   // target ramped from the stress-free tip (exact arc of omega*, as reference_state).

@@ -28,7 +28,8 @@ bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eige
   r.resize(nx);
   if (planar) {
     // The in-plane rows (force x, z; moment y) of the 3-D residual; the others are zero.
-    const Vec3 F_B0 = model.R_WB0.transpose() * (lambda * act.tip_force_W_N);
+    const Vec3 F_B0 =
+        model.R_WB0.transpose() * (lambda * rod::tip_force_with_weight_W_N(model, act));
     const double M_y = model.R_WB0.col(1).dot(lambda * act.tip_moment_W_Nm);
     double w[3];
     planar::tip_wrench(prod, omega_star.y(), F_B0.x(), F_B0.z(), M_y, yL.data(), w);
@@ -42,7 +43,8 @@ bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eige
   const Vec3 nu = nu_star + e;
   const Vec3 omega = yL.segment<3>(kOmega);
   // The holder's reaction (an unknown, not scaled by lambda) adds to the applied tip force.
-  Vec3 rn = K_nu.cwiseProduct(e) - R.transpose() * (lambda * act.tip_force_W_N + reaction_W(x));
+  Vec3 rn = K_nu.cwiseProduct(e) -
+            R.transpose() * (lambda * rod::tip_force_with_weight_W_N(model, act) + reaction_W(x));
   Vec3 rm =
       K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
   for (int i = 0; i < n_act; ++i) {
@@ -87,7 +89,8 @@ bool TipConditions::tip_jacobian(const Actuation& act, double lambda, const Eige
   // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.
   const Eigen::Map<const Mat3> R(y.data() + kR);
   const Vec3 nu = nu_star + y.segment<3>(kNu), omega = y.segment<3>(kOmega);
-  const Vec3 F_e = lambda * act.tip_force_W_N + reaction_W(x), M_e = lambda * act.tip_moment_W_Nm;
+  const Vec3 F_e = lambda * rod::tip_force_with_weight_W_N(model, act) + reaction_W(x),
+             M_e = lambda * act.tip_moment_W_Nm;
   for (int j = 0; j < nx; ++j) {
     const double* yj = Y.data() + dim * (j + 1);
     const Eigen::Map<const Mat3> dR(yj + kR);
@@ -125,7 +128,7 @@ bool TipConditions::tip_jacobian(const Actuation& act, double lambda, const Eige
 
 bool TipConditions::planar_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& Y,
                                     Eigen::MatrixXd& J) const {
-  const Vec3 F_B0 = model.R_WB0.transpose() * (lambda * act.tip_force_W_N);
+  const Vec3 F_B0 = model.R_WB0.transpose() * (lambda * rod::tip_force_with_weight_W_N(model, act));
   double dw[3 * planar::kMaxDirections];
   planar::tip_wrench_sens(prod, F_B0.x(), F_B0.z(), dim, nx, Y.data(), dw);
   for (int j = 0; j < nx; ++j) {
@@ -157,7 +160,8 @@ void TipConditions::equilibrium(const Actuation& act, const Eigen::VectorXd& x,
   const Vec3 w = f_ext_W;
   const Vec3 pL = yL.segment<3>(kP);
   const Vec3 c = yL.segment<3>(kC);
-  const Vec3 F_tip = act.tip_force_W_N + reaction_W(x);  // applied load plus the holder's
+  const Vec3 F_tip =
+      rod::tip_force_with_weight_W_N(model, act) + reaction_W(x);  // applied load plus the holder's
   Vec3 n_exp = F_tip + L * w;
   Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - L * p0).cross(w);
   for (int i = 0; i < n_act; ++i) {

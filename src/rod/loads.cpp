@@ -23,6 +23,42 @@ Loads Loads::from_model(const RodModel& model) {
   return a;
 }
 
+Loads Loads::at_time(const RodModel& model, double t_s) {
+  Loads a = from_model(model);
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t k = static_cast<std::size_t>(c);
+    if (!model.tip_force_profile_W_N[k].is_constant())
+      a.tip_force_W_N[c] = model.tip_force_profile_W_N[k].value(t_s);
+    if (!model.tip_moment_profile_W_Nm[k].is_constant())
+      a.tip_moment_W_Nm[c] = model.tip_moment_profile_W_Nm[k].value(t_s);
+  }
+  for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    const Drive& d = model.actuators[i].drive;
+    ActuatorLoad& load = a.actuators[i];
+    if (d.type == Drive::Type::kTension) {
+      if (!d.tension_profile_N.is_constant()) load.tension_N = d.tension_profile_N.value(t_s);
+      continue;
+    }
+    for (std::size_t k = 0; k < load.segments.size(); ++k) {
+      if (k < d.temperature_profiles_K.size() && !d.temperature_profiles_K[k].is_constant()) {
+        load.segments[k].temperature_K = d.temperature_profiles_K[k].value(t_s);
+      }
+      if (k < d.electric.size() && !d.electric[k].value.is_constant()) {
+        const ElectricSegment& e = d.electric[k];
+        const double u = e.value.value(t_s);
+        const tca::SteadyTemperature st = tca::steady_temperature(e.thermal, e.input, u);
+        if (!st.exists) {
+          throw DomainError("actuator '" + model.actuators[i].name + "' segment " +
+                            std::to_string(k) + ": " + tca::key_name(e.input) + " = " +
+                            format_value(u) + " at t = " + format_value(t_s) + " s " + st.reason);
+        }
+        load.segments[k].temperature_K = st.temperature_K;
+      }
+    }
+  }
+  return a;
+}
+
 void Loads::set_temperature_K(std::size_t index, double t_K) {
   require(index < actuators.size(), "loads.actuators index", static_cast<double>(index),
           "must be < the number of actuators");
@@ -99,7 +135,7 @@ double characteristic_force_N(const RodModel& model, const Loads& loads) {
   const double L = model.length_m;
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   const double EI = std::min(K_omega.x(), K_omega.y());
-  double load = std::max(a.tip_force_W_N.norm(), a.tip_moment_W_Nm.norm() / L);
+  double load = std::max(tip_force_with_weight_W_N(model, a).norm(), a.tip_moment_W_Nm.norm() / L);
   load = std::max(
       load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
   for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
@@ -108,6 +144,11 @@ double characteristic_force_N(const RodModel& model, const Loads& loads) {
       load = std::max(load, act.count * std::abs(a.actuators[i].tension_N));
   }
   return std::max(EI / (L * L), load);
+}
+
+Eigen::Vector3d tip_force_with_weight_W_N(const RodModel& model, const Loads& loads) {
+  if (model.tip_mass_kg == 0.0) return loads.tip_force_W_N;
+  return loads.tip_force_W_N + model.tip_mass_kg * loads.gravity_W_m_s2;
 }
 
 RodModel with_loads(const RodModel& model, const Loads& loads) {

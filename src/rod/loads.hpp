@@ -30,8 +30,15 @@ struct Loads {
   /// reference temperature). 1 (the default) applies the loads as given.
   double load_scale = 1.0;
 
-  /// The loads the model file describes (load_scale 1).
+  /// The loads the model file describes (load_scale 1): its time profiles at t = 0, an
+  /// electric drive's segments at the steady temperatures of its inputs at t = 0.
   static Loads from_model(const RodModel& model);
+  /// The loads at time t_s: from_model with every non-constant time profile (tension, segment
+  /// temperature, tip wrench component) evaluated at t_s, and each electric drive's segments
+  /// at the steady temperature of its input at t_s (the quasi-static thermal limit; a dynamic
+  /// simulation replaces them by its thermal states). Throws DomainError when an input at
+  /// t_s has no steady temperature (thermal runaway).
+  static Loads at_time(const RodModel& model, double t_s);
   /// Sets every segment of TCA actuator `index` to temperature t_K [K].
   void set_temperature_K(std::size_t index, double t_K);
   /// Sets the segment temperatures of TCA actuator `index` [K], one per segment.
@@ -51,6 +58,11 @@ struct Loads {
 /// rho A |g| L, c_i |T_i| of the tension drives). The shooting solver scales its residual by
 /// F_c of the model's own loads (cosserat/shooting.hpp).
 double characteristic_force_N(const RodModel& model, const Loads& loads);
+
+/// The force on the rod at its tip including the tip mass's weight [N] (world frame):
+/// loads.tip_force_W_N + model.tip_mass_kg loads.gravity_W_m_s2 (exactly tip_force_W_N when
+/// the tip mass is 0). Both solvers apply this in statics.
+Eigen::Vector3d tip_force_with_weight_W_N(const RodModel& model, const Loads& loads);
 
 /// A copy of `model` whose own loads (drive tensions and segments, tip wrench, gravity) are
 /// loads.applied(model); validates the loads first.

@@ -6,13 +6,16 @@
 /// `R_WB0`), body B (e1, e2 span the section, e3 along the undeformed centerline).
 /// Units: SI throughout; temperatures in kelvin.
 #include <Eigen/Core>
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "common/time_profile.hpp"
 #include "tca/tca.hpp"
+#include "tca/thermal.hpp"
 
 namespace tcasim::rod {
 
@@ -58,6 +61,14 @@ struct Routing {
   Eigen::Vector3d ddr(double s_m) const;
 };
 
+/// The electric drive of one TCA segment (docs/scenario-format.md "Electro-thermal TCAs").
+struct ElectricSegment {
+  tca::ElectricInput input = tca::ElectricInput::kVoltage;
+  TimeProfile value;  ///< voltage [V], current [A] or power [W] over time
+  /// The segment's share of the TCA's thermal parameters (fraction f of C, hA and R0).
+  tca::ThermalParameters thermal;
+};
+
 /// How a string's tension is set.
 struct Drive {
   enum class Type { kTension, kTca };
@@ -67,6 +78,14 @@ struct Drive {
   std::shared_ptr<const tca::Tca> tca;  ///< kTca: the resolved TCA
   std::vector<tca::Segment> segments;   ///< kTca: one segment {1, T} for a uniform temperature
   bool segmented = false;               ///< true if the file gave `segments`
+  /// Time profiles of the drive (docs/scenario-format.md "Time profiles"); tension_N and
+  /// segments[k].temperature_K hold their values at t = 0.
+  TimeProfile tension_profile_N;                    ///< kTension
+  std::vector<TimeProfile> temperature_profiles_K;  ///< kTca by temperature: one per segment
+  /// kTca by electric input: one per segment (empty for a temperature drive); the segments'
+  /// temperatures at t = 0 are the steady temperatures of the inputs at t = 0.
+  std::vector<ElectricSegment> electric;
+  bool is_electric() const { return !electric.empty(); }
 };
 
 /// One actuator: `count` identical parallel strings along one routing.
@@ -105,7 +124,16 @@ struct RodModel {
   Eigen::Vector3d base_position_W_m = Eigen::Vector3d::Zero();
   Eigen::Matrix3d R_WB0 = Eigen::Matrix3d::Identity();
   std::optional<TipConstraint> tip_constraint;
+  /// Point mass at the tip [kg] (`tip_mass_kg`, default 0): in statics a tip weight
+  /// m g added to the tip force (rod::tip_force_with_weight_W_N).
+  double tip_mass_kg = 0.0;
+  /// Time profiles of the tip wrench components (world frame); tip_force_W_N and
+  /// tip_moment_W_Nm hold their values at t = 0.
+  std::array<TimeProfile, 3> tip_force_profile_W_N;
+  std::array<TimeProfile, 3> tip_moment_profile_W_Nm;
   std::map<std::string, std::shared_ptr<const tca::Tca>> tcas;
+  /// Lumped thermal parameters of the TCAs that have a `thermal` block, by TCA id.
+  std::map<std::string, tca::ThermalParameters> tca_thermal;
   std::vector<Actuator> actuators;
 
   /// K_nu = diag(G A, G A, E A) [N].

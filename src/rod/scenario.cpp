@@ -125,8 +125,8 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   // The schema is checked first so that a file of another kind gets the right message.
   const std::string schema = peek_choice(doc, "", "schema", {kScenarioSchema});
   const Obj o(doc, "",
-              {"schema", "name", "comment", "body", "gravity_m_s2", "tip_load", "tip_constraint",
-               "base", "tcas", "actuators"});
+              {"schema", "name", "comment", "body", "gravity_m_s2", "tip_load", "tip_mass_kg",
+               "tip_constraint", "base", "tcas", "actuators"});
   RodModel m;
   m.schema = schema;
   m.name = o.nonempty_string("name");
@@ -152,8 +152,18 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   }
   if (o.has("tip_load")) {
     const Obj tl(o.required("tip_load"), "tip_load", {"force_N", "moment_Nm"});
-    if (tl.has("force_N")) m.tip_force_W_N = tl.vector3("force_N");
-    if (tl.has("moment_Nm")) m.tip_moment_W_Nm = tl.vector3("moment_Nm");
+    if (tl.has("force_N")) {
+      m.tip_force_profile_W_N = parse_profile_vector3(tl, "force_N");
+      m.tip_force_W_N = values_at(m.tip_force_profile_W_N, 0.0);
+    }
+    if (tl.has("moment_Nm")) {
+      m.tip_moment_profile_W_Nm = parse_profile_vector3(tl, "moment_Nm");
+      m.tip_moment_W_Nm = values_at(m.tip_moment_profile_W_Nm, 0.0);
+    }
+  }
+  if (o.has("tip_mass_kg")) {
+    m.tip_mass_kg = o.number("tip_mass_kg");
+    require(m.tip_mass_kg >= 0.0, "tip_mass_kg", m.tip_mass_kg, "must be >= 0");
   }
   if (o.has("tip_constraint")) {
     const Obj tc(o.required("tip_constraint"), "tip_constraint", {"position_m", "normal"});
@@ -171,7 +181,10 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
     if (b.has("position_m")) m.base_position_W_m = b.vector3("position_m");
     if (b.has("rotation")) m.R_WB0 = parse_rotation(b, "rotation");
   }
-  if (o.has("tcas")) m.tcas = parse_tcas(o.required("tcas"), "tcas", base_dir);
+  if (o.has("tcas")) {
+    m.tcas = parse_tcas(o.required("tcas"), "tcas", base_dir);
+    m.tca_thermal = parse_tca_thermals(o.required("tcas"), "tcas", m.tcas);
+  }
 
   if (o.has("actuators")) {
     const json& acts = o.required("actuators");
@@ -213,6 +226,7 @@ std::map<std::string, std::shared_ptr<const tca::Tca>> read_tcas(const std::stri
   (void)o.nonempty_string("name");
   (void)o.optional_string("comment");
   auto tcas = parse_tcas(o.required("tcas"), "tcas", dir);
+  (void)parse_tca_thermals(o.required("tcas"), "tcas", tcas);  // validated, not returned
   require(!tcas.empty(), "tcas", "{}", "must define at least one TCA");
   return tcas;
 }

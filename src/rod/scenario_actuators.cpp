@@ -64,9 +64,7 @@ Routing parse_routing(const json& j, const std::string& path, const Section& sec
 }
 
 /// A drive temperature [degC] checked against absolute zero and the TCA material's range.
-double parse_drive_temperature_K(const Obj& o, const std::string& k, const tca::Tca& t) {
-  const double t_degC = o.number(k);
-  const std::string key = o.key(k);
+double check_drive_temperature_K(double t_degC, const std::string& key, const tca::Tca& t) {
   const double t_K = above_absolute_zero_K(t_degC, key);
   const tca::Material& m = t.material();
   require(t_K >= m.min_temperature_K && t_K <= m.max_temperature_K, key, t_degC,
@@ -82,16 +80,47 @@ double parse_drive_temperature_K(const Obj& o, const std::string& k, const tca::
   return t_K;
 }
 
+/// A drive temperature [degC], a number or a time profile, as a profile in kelvin; its lowest
+/// and highest values are checked as check_drive_temperature_K.
+TimeProfile parse_drive_temperature_K(const Obj& o, const std::string& k, const tca::Tca& t) {
+  const std::string key = o.key(k);
+  const TimeProfile p_degC = parse_time_profile(o.required(k), key);
+  (void)check_drive_temperature_K(p_degC.min_value(), key, t);
+  (void)check_drive_temperature_K(p_degC.max_value(), key, t);
+  return p_degC.affine(units::kZeroCelsius_K, 1.0);
+}
+
+/// An electric segment of a segmented TCA drive (every segment electric, or none): adds it
+/// to d and returns true; returns false for a temperature segment.
+bool parse_segment_electric(const Obj& so, std::size_t i, Drive& d, double f,
+                            const RodModel& model) {
+  const bool el = so.has("electric");
+  if (i > 0 && el != d.is_electric()) {
+    throw InputError(so.key(el ? "electric" : "temperature_degC"), "(given)",
+                     "must be of the same kind in every segment (all temperature_degC or all "
+                     "electric)");
+  }
+  if (!el) return false;
+  require(!so.has("temperature_degC"), so.key("temperature_degC"), "(given)",
+          "must not be given together with electric (give exactly one)");
+  double t0_K = 0.0;
+  d.electric.push_back(
+      parse_electric(so.required("electric"), so.key("electric"), d.tca_id, f, model, t0_K));
+  d.segments.push_back(tca::Segment{f, t0_K});
+  return true;
+}
+
 Drive parse_drive(const json& j, const std::string& path, const RodModel& model) {
   const std::string type = peek_choice(j, path, "type", {"tension", "tca"});
   Drive d;
   if (type == "tension") {
     const Obj o(j, path, {"type", "tension_N"});
     d.type = Drive::Type::kTension;
-    d.tension_N = o.number("tension_N");
+    d.tension_profile_N = parse_time_profile(o.required("tension_N"), o.key("tension_N"));
+    d.tension_N = d.tension_profile_N.value(0.0);
     return d;
   }
-  const Obj o(j, path, {"type", "tca", "temperature_degC", "segments"});
+  const Obj o(j, path, {"type", "tca", "temperature_degC", "segments", "electric"});
   d.type = Drive::Type::kTca;
   d.tca_id = o.string("tca");
   const auto it = model.tcas.find(d.tca_id);
@@ -106,16 +135,27 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   d.tca = it->second;
   const bool has_t = o.has("temperature_degC");
   const bool has_seg = o.has("segments");
-  if (has_t && has_seg) {
-    throw InputError(o.key("segments"), show(o.required("segments")),
-                     "must not be given together with temperature_degC (give exactly one)");
+  const bool has_el = o.has("electric");
+  if (has_t + has_seg + has_el > 1) {
+    throw InputError(o.key(has_el ? "electric" : "segments"),
+                     show(o.required(has_el ? "electric" : "segments")),
+                     "must not be given together with temperature_degC, segments or electric "
+                     "(give exactly one)");
   }
-  if (!has_t && !has_seg) {
+  if (!has_t && !has_seg && !has_el) {
     throw InputError(o.key("temperature_degC"), "(missing)",
-                     "is required unless segments is given (give exactly one)");
+                     "is required unless segments or electric is given (give exactly one)");
   }
   if (has_t) {
-    d.segments = {tca::Segment{1.0, parse_drive_temperature_K(o, "temperature_degC", *d.tca)}};
+    d.temperature_profiles_K = {parse_drive_temperature_K(o, "temperature_degC", *d.tca)};
+    d.segments = {tca::Segment{1.0, d.temperature_profiles_K[0].value(0.0)}};
+    return d;
+  }
+  if (has_el) {
+    double t0_K = 0.0;
+    d.electric = {
+        parse_electric(o.required("electric"), o.key("electric"), d.tca_id, 1.0, model, t0_K)};
+    d.segments = {tca::Segment{1.0, t0_K}};
     return d;
   }
   d.segmented = true;
@@ -131,12 +171,13 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   double sum = 0.0;
   for (std::size_t i = 0; i < segs.size(); ++i) {
     const Obj so(segs[i], fmt::format("{}[{}]", o.key("segments"), i),
-                 {"fraction", "temperature_degC"});
+                 {"fraction", "temperature_degC", "electric"});
     const double f = so.number("fraction");
     require(f > 0.0 && f <= 1.0, so.key("fraction"), f, "must lie in (0, 1]");
     sum += f;
-    d.segments.push_back(
-        tca::Segment{f, parse_drive_temperature_K(so, "temperature_degC", *d.tca)});
+    if (parse_segment_electric(so, i, d, f, model)) continue;
+    d.temperature_profiles_K.push_back(parse_drive_temperature_K(so, "temperature_degC", *d.tca));
+    d.segments.push_back(tca::Segment{f, d.temperature_profiles_K.back().value(0.0)});
   }
   require(std::abs(sum - 1.0) <= kFractionSumTolerance, o.key("segments"),
           fmt::format("(fractions summing to {})", format_value(sum)),

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/time_profile.hpp"
 #include "rod/model.hpp"
 #include "tca/tca.hpp"
 
@@ -218,5 +220,28 @@ std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j,
 
 /// One entry of `actuators` (routing, count, drive, rest length) on the body `model`.
 Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model);
+
+// ---------------------------------------------------------------------------------------
+// Time profiles and electro-thermal drives (scenario_profiles.cpp, scenario_thermal.cpp).
+
+/// A number (constant) or a time profile object at `key` (docs/scenario-format.md "Time
+/// profiles"); errors name the key path inside the profile.
+TimeProfile parse_time_profile(const json& v, const std::string& key);
+/// An array of 3 components at key k, each a number or a time profile.
+std::array<TimeProfile, 3> parse_profile_vector3(const Obj& o, const std::string& k);
+/// The three components at time t_s.
+Eigen::Vector3d values_at(const std::array<TimeProfile, 3>& p, double t_s);
+
+/// The `thermal` blocks of the `tcas` object (TCAs without one are absent), by TCA id.
+std::map<std::string, tca::ThermalParameters> parse_tca_thermals(
+    const json& tcas, const std::string& path,
+    const std::map<std::string, std::shared_ptr<const tca::Tca>>& parsed);
+
+/// The `electric` object of a drive (or of a segment) at `path` for a segment of length
+/// fraction f of TCA `tca_id`: the input, its profile, the segment's share of the thermal
+/// parameters; also returns the steady temperature at t = 0 [K] in `steady_K`, refusing a
+/// drive without one (runaway) or with one outside the material's valid range.
+ElectricSegment parse_electric(const json& j, const std::string& path, const std::string& tca_id,
+                               double fraction, const RodModel& model, double& steady_K);
 
 }  // namespace tcasim::rod::scenario_detail

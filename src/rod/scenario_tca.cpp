@@ -26,7 +26,7 @@ std::shared_ptr<const tca::Tca> parse_tca(const json& j, const std::string& path
   (void)base_dir;
   const Obj o(j, path,
               {"kind", "coiled_length_m", "fiber_length_m", "pitch_angle_deg", "outer_diameter_m",
-               "twist_turns", "f12_form", "material", "comment"});
+               "twist_turns", "f12_form", "material", "comment", "thermal"});
   tca::Parameters p;
   p.kind = o.choice("kind", {"extension", "contraction"}) == "extension" ? tca::Kind::kExtension
                                                                          : tca::Kind::kContraction;
