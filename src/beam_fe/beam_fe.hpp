@@ -125,7 +125,14 @@ class Discretization {
   /// Validates the options (InputError naming `elements`, `order`, ...).
   Discretization(const rod::RodModel& model, const Options& options);
 
+  /// Elements of the mesh: Options::elements for a uniform body; for a body that varies
+  /// along s (docs/scenario-format.md "Profiles along the body") the mesh has a node at every
+  /// breakpoint and each piece between breakpoints max(1, round(elements x piece / L)) equal
+  /// elements, so the count may differ from Options::elements.
   int element_count() const { return elements_; }
+  /// Reference arc length of element e's first node and its length [m].
+  double element_start_m(int e) const { return element_s0_m_[static_cast<std::size_t>(e)]; }
+  double element_length_m(int e) const { return element_h_m_[static_cast<std::size_t>(e)]; }
   int order() const { return order_; }
   int node_count() const { return elements_ * order_ + 1; }
   /// Unknowns: 6 per free node (the base node is clamped), then one per TCA actuator, then
@@ -197,6 +204,7 @@ class Discretization {
   const rod::RodModel* model_;
   int elements_, order_;
   double h_m_;
+  std::vector<double> element_s0_m_, element_h_m_;  // per element: first node's s, length
   Quadrature quad_;
   std::vector<int> tca_actuators_;   // actuator index of each TCA unknown
   std::vector<int> tca_unknown_;     // per actuator: its TCA unknown or -1

@@ -40,6 +40,27 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");
   h_m_ = model.length_m / elements_;
+  if (model.uniform_body()) {
+    element_h_m_.assign(static_cast<std::size_t>(elements_), h_m_);
+    for (int e = 0; e < elements_; ++e) {
+      element_s0_m_.push_back(model.length_m * (e * order_) / (elements_ * order_));
+    }
+  } else {
+    // A node at every breakpoint; equal elements on each piece, in proportion to its length.
+    std::vector<double> knots = model.breakpoints();
+    knots.insert(knots.begin(), 0.0);
+    knots.push_back(model.length_m);
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+      const double a = knots[k], b = knots[k + 1];
+      const int n =
+          std::max(1, static_cast<int>(std::lround(options.elements * (b - a) / model.length_m)));
+      for (int i = 0; i < n; ++i) {
+        element_s0_m_.push_back(i == 0 ? a : a + (b - a) * i / n);
+        element_h_m_.push_back((i + 1 == n ? b : a + (b - a) * (i + 1) / n) - element_s0_m_.back());
+      }
+    }
+    elements_ = static_cast<int>(element_h_m_.size());
+  }
 
   // Gauss-Legendre points on [-1, 1].
   const int points = order_ + (options.integration == Integration::kFull ? 1 : 0);
@@ -69,11 +90,17 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   // degree order <= 2 p - 1) and the tip force.
   const int nodes = node_count();
   nodal_dead_load_ = VectorXd::Zero(6 * (nodes - 1));
-  const Vector3d f_W = model.weight_per_length_W_N_m();
+  const bool uniform = model.uniform_body();
   for (int e = 0; e < elements_; ++e) {
     for (std::size_t g = 0; g < quad_.xi.size(); ++g) {
       const double xi = quad_.xi[g];
-      const double wj = quad_.weight[g] * 0.5 * h_m_;
+      const double h_e = element_h_m_[static_cast<std::size_t>(e)];
+      const double wj = quad_.weight[g] * 0.5 * h_e;
+      const Vector3d f_W =
+          uniform ? model.weight_per_length_W_N_m()
+                  : Vector3d(model.mass_per_length_kg_m(element_s0_m_[static_cast<std::size_t>(e)] +
+                                                        0.5 * (xi + 1.0) * h_e) *
+                             model.gravity_W_m_s2);
       double N[3];
       if (order_ == 1) {
         N[0] = 0.5 * (1.0 - xi);
@@ -98,10 +125,14 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
 
   // Tip constraint: held world directions (all three when pinned, the normal for a contact),
   // target ramped from the stress-free tip (exact arc of omega*, as reference_state).
-  const Vector3d phi_L = model.length_m * model.reference_curvature_B_1_m;
-  tip_reference_W_m_ =
-      model.base_position_W_m +
-      model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
+  if (uniform) {
+    const Vector3d phi_L = model.length_m * model.reference_curvature_B_1_m;
+    tip_reference_W_m_ =
+        model.base_position_W_m +
+        model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
+  } else {
+    tip_reference_W_m_ = reference_state().p_W_m.back();
+  }
   if (model.tip_constraint) {
     tip_goal_W_m_ = model.tip_constraint->position_W_m;
     if (model.tip_constraint->normal_W) {
@@ -125,6 +156,36 @@ State Discretization::reference_state() const {
   State st;
   const int nodes = node_count();
   const Eigen::Quaterniond q0(model.R_WB0);
+  if (!model.uniform_body()) {
+    // omega* varies: the stress-free shape R' = R hat(omega*(s)), p' = R e3 by constant-
+    // curvature arcs at the midpoint curvature of kSubsteps substeps per node interval (second
+    // order; only the starting configuration and the constraint ramp's start use it).
+    constexpr int kSubsteps = 64;
+    Eigen::Quaterniond q = q0;
+    Vector3d p = model.base_position_W_m;
+    st.s_m.push_back(0.0);
+    st.p_W_m.push_back(p);
+    st.q_WB.push_back(q);
+    for (int e = 0; e < elements_; ++e) {
+      const double s0 = element_s0_m_[static_cast<std::size_t>(e)];
+      const double h = element_h_m_[static_cast<std::size_t>(e)];
+      for (int a = 1; a <= order_; ++a) {
+        const double lo = s0 + h * (a - 1) / order_;
+        const double hi = a == order_ ? s0 + h : s0 + h * a / order_;
+        const double ds = (hi - lo) / kSubsteps;
+        for (int j = 0; j < kSubsteps; ++j) {
+          const Vector3d phi = ds * model.reference_curvature_at(lo + (j + 0.5) * ds);
+          p += q.toRotationMatrix() * (ds * so3::left_jacobian(phi) * Vector3d::UnitZ());
+          q = (q * so3::exp_quaternion(phi)).normalized();
+        }
+        st.s_m.push_back(hi);
+        st.p_W_m.push_back(p);
+        st.q_WB.push_back(q);
+      }
+    }
+    st.tensions_N.assign(model.actuators.size(), 0.0);
+    return st;
+  }
   for (int k = 0; k < nodes; ++k) {
     const double s = model.length_m * k / (nodes - 1);
     const Vector3d phi = s * model.reference_curvature_B_1_m;
@@ -258,9 +319,20 @@ Discretization::Floor Discretization::round_off_floor() const {
   // up the force round-off times the node spacing h.
   constexpr double kRoundOffTerms = 10.0;
   const double eps_n = kRoundOffTerms * std::numeric_limits<double>::epsilon() * node_count();
-  const double force = eps_n * model_->shear_extension_stiffness().maxCoeff();
-  const double moment = eps_n * model_->bending_torsion_stiffness().maxCoeff() / model_->length_m +
-                        force * model_->length_m / (node_count() - 1);
+  double K_se = model_->shear_extension_stiffness().maxCoeff();
+  double K_bt = model_->bending_torsion_stiffness().maxCoeff();
+  for (int e = 0; e < elements_ && !model_->uniform_body(); ++e) {
+    // The stiffest point of a varying body: its largest values lie at element ends.
+    for (const rod::Side side : {rod::Side::kLeft, rod::Side::kRight}) {
+      for (const double s : {element_s0_m_[e], element_s0_m_[e] + element_h_m_[e]}) {
+        K_se = std::max(K_se, model_->shear_extension_stiffness(s, side).maxCoeff());
+        K_bt = std::max(K_bt, model_->bending_torsion_stiffness(s, side).maxCoeff());
+      }
+    }
+  }
+  const double force = eps_n * K_se;
+  const double moment =
+      eps_n * K_bt / model_->length_m + force * model_->length_m / (node_count() - 1);
   return {force, moment};
 }
 

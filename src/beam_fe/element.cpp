@@ -128,9 +128,12 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   const int ref = order_ == 1 ? 0 : 1;  // reference node: a node, so psi_ref = 0 exactly
   const Eigen::Quaterniond q_ref = state.q_WB[first + ref];
   const Matrix3d R_ref = q_ref.toRotationMatrix();
-  const Vector3d K_nu = model.shear_extension_stiffness();
-  const Vector3d K_omega = model.bending_torsion_stiffness();
-  const Vector3d omega_ref = model.reference_curvature_B_1_m;
+  // A body that varies along s: the properties at each quadrature point (inside the element,
+  // so never at a breakpoint, where the mesh has a node).
+  const bool uniform = model.uniform_body();
+  Vector3d K_nu = model.shear_extension_stiffness();
+  Vector3d K_omega = model.bending_torsion_stiffness();
+  Vector3d omega_ref = model.reference_curvature_B_1_m;
   const std::size_t n_act = model.actuators.size();
 
   // Node map u(theta): y_a = R_r^T (p_a - p_r), psi_a = log(R_r^T R_a).
@@ -167,6 +170,11 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     shape(order_, xi[g], N, dN_dxi);
     const double wj = weight[g] * 0.5 * h_m_;
     const double s_m = state.s_m[first] + 0.5 * (xi[g] + 1.0) * h_m_;
+    if (!uniform) {
+      K_nu = model.shear_extension_stiffness(s_m);
+      K_omega = model.bending_torsion_stiffness(s_m);
+      omega_ref = model.reference_curvature_at(s_m);
+    }
     double dN[3];
     for (int a = 0; a < n; ++a) dN[a] = dN_dxi[a] * 2.0 / h_m_;
     Vector3d yp = Vector3d::Zero(), ps = Vector3d::Zero(), pp = Vector3d::Zero();
@@ -371,11 +379,11 @@ void Discretization::evaluate_element(const State& state, int e,
                                       const std::vector<double>& tensions_N, bool with_tangent,
                                       ElementEvaluation& out) const {
   if (order_ == 1) {
-    element_kernel<1>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent,
-                      out);
+    element_kernel<1>(*model_, quad_.xi, quad_.weight, element_h_m_[static_cast<std::size_t>(e)],
+                      state, e, tensions_N, with_tangent, out);
   } else {
-    element_kernel<2>(*model_, quad_.xi, quad_.weight, h_m_, state, e, tensions_N, with_tangent,
-                      out);
+    element_kernel<2>(*model_, quad_.xi, quad_.weight, element_h_m_[static_cast<std::size_t>(e)],
+                      state, e, tensions_N, with_tangent, out);
   }
 }
 
@@ -386,6 +394,7 @@ std::vector<PointStrain> Discretization::strains(const State& state) const {
   double N[3], dN_dxi[3];
   for (int e = 0; e < elements_; ++e) {
     const int first = e * order_;
+    const double h_e = element_h_m_[static_cast<std::size_t>(e)];
     const Eigen::Quaterniond q_ref = state.q_WB[first + ref];
     const Matrix3d R_ref = q_ref.toRotationMatrix();
     std::vector<Vector3d> y(n), psi(n);
@@ -397,11 +406,11 @@ std::vector<PointStrain> Discretization::strains(const State& state) const {
       shape(order_, quad_.xi[g], N, dN_dxi);
       Vector3d yp = Vector3d::Zero(), ps = Vector3d::Zero(), pp = Vector3d::Zero();
       for (int a = 0; a < n; ++a) {
-        yp += dN_dxi[a] * 2.0 / h_m_ * y[a];
+        yp += dN_dxi[a] * 2.0 / h_e * y[a];
         ps += N[a] * psi[a];
-        pp += dN_dxi[a] * 2.0 / h_m_ * psi[a];
+        pp += dN_dxi[a] * 2.0 / h_e * psi[a];
       }
-      out.push_back({state.s_m[first] + 0.5 * (quad_.xi[g] + 1.0) * h_m_,
+      out.push_back({state.s_m[first] + 0.5 * (quad_.xi[g] + 1.0) * h_e,
                      so3::exp(ps).transpose() * yp, so3::right_jacobian(ps) * pp});
     }
   }

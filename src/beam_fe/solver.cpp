@@ -392,7 +392,10 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   rod::Result res;
   res.scenario = model.name;
   res.method = "fe";
-  res.discretization = {{"elements", options.elements}, {"order", options.order}};
+  // The mesh's element count (a body that varies along s: aligned to its breakpoints).
+  const int elements =
+      model.uniform_body() ? options.elements : Discretization(model, options).element_count();
+  res.discretization = {{"elements", elements}, {"order", options.order}};
   res.converged = summary.converged();
   res.status = to_string(summary.status);
   res.iterations = summary.iterations;

@@ -6,7 +6,9 @@
 /// returns false when the integration failed or the end state is not finite.
 /// Internal to the shooting solver.
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
+#include <vector>
 
 #include "common/ode.hpp"
 #include "cosserat/lie_rkmk4.hpp"
@@ -14,14 +16,28 @@
 
 namespace tcasim::cosserat::internal {
 
+/// A piecewise IVP (a body whose properties vary along s): the integration runs piece by
+/// piece between the knots, with `steps x (piece length) / L` equal steps per piece (at
+/// least one; CVODE: one integration per piece), calls `enter` before each piece and
+/// applies `jump` (state) or `jump_sens` (augmented state) at each interior knot. A jump
+/// returning false fails the integration.
+struct PieceHooks {
+  std::vector<double> knots;  ///< 0 = knots[0] < ... < knots.back() = L
+  std::function<void(double lo, double hi)> enter;
+  std::function<bool(std::size_t knot, Eigen::VectorXd& y)> jump;
+  std::function<bool(std::size_t knot, Eigen::VectorXd& Y)> jump_sens;
+};
+
 class IntegrationLevel {
  public:
   /// dim: IVP state dimension; nx: sensitivity directions (used when `sensitivities`);
   /// options: the integrator (its `steps` are this level's; output_intervals > 0 samples the
   /// observer at that many equal intervals, 0 at every step node). Throws InputError on bad
   /// options.
+  /// pieces: the piecewise IVP (nullptr: one piece [0, L]); it must outlive the level. The
+  /// observer then sees every step node of every piece (each knot once, after its jump).
   IntegrationLevel(int dim, int nx, const ode::IntegratorOptions& options, Kinematics kinematics,
-                   bool sensitivities);
+                   bool sensitivities, const PieceHooks* pieces = nullptr);
 
   /// Integrates y (size dim) from 0 to L in place; the observer sees the samples. False when
   /// the integration failed or y(L) is not finite.
@@ -31,9 +47,19 @@ class IntegrationLevel {
   /// variational right-hand side f. Needs has_sensitivities(). False as integrate().
   bool integrate_sensitivities(const ode::RhsFunction& f, double L, Eigen::VectorXd& Y);
 
-  bool has_sensitivities() const { return flat_sens_.has_value() || lie_sens_.has_value(); }
+  bool has_sensitivities() const {
+    return flat_sens_.has_value() || lie_sens_.has_value() || !piece_flat_sens_.empty() ||
+           !piece_lie_sens_.empty();
+  }
 
  private:
+  /// The piecewise integration of integrate() (sens: integrate_sensitivities()).
+  bool integrate_pieces(const ode::RhsFunction& f, Eigen::VectorXd& y,
+                        const ode::Observer& observer, bool sens);
+
+  const PieceHooks* pieces_ = nullptr;
+  std::vector<ode::Integrator> piece_flat_, piece_flat_sens_;  // one per piece
+  std::vector<LieGroupRk4> piece_lie_, piece_lie_sens_;
   std::optional<ode::Integrator> flat_, flat_sens_;  // Kinematics::kFlat
   std::optional<LieGroupRk4> lie_, lie_sens_;        // Kinematics::kLieGroup
   int every_ = 1;                                    // Lie group: observe every every_-th step node

@@ -17,6 +17,9 @@ bool ShootingSolver::Impl::planar_model(const rod::RodModel& m, const Options& o
       m.tip_constraint || static_cast<int>(m.actuators.size()) > planar::kMaxActuators) {
     return false;
   }
+  // The planar right-hand sides have constant properties: a body that varies along s is
+  // solved in 3-D (its pieces and jumps are RodRhs's).
+  if (!m.uniform_body()) return false;
   if (m.reference_curvature_B_1_m.x() != 0.0 || m.reference_curvature_B_1_m.z() != 0.0) {
     return false;
   }

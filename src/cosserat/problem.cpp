@@ -1,5 +1,7 @@
 #include "cosserat/problem.hpp"
 
+#include <algorithm>
+
 #include "cosserat/planar.hpp"
 
 namespace tcasim::cosserat::internal {
@@ -34,6 +36,55 @@ RodProblem::RodProblem(const rod::RodModel& m, bool planar_layout)
     if (model.tip_constraint->normal_W) con_normal_W = *model.tip_constraint->normal_W;
   }
   nx = x_tca + n_tca + n_con;
+
+  uniform = model.uniform_body();
+  K_nu_tip = K_nu;
+  K_omega_tip = K_omega;
+  omega_star_tip = omega_star;
+  rho_A_ref = model.material.density_kg_m3 * model.section.area_m2;
+  weight_length = L;
+  if (!uniform) {
+    K_nu_tip = model.shear_extension_stiffness(L, rod::Side::kLeft);
+    K_omega_tip = model.bending_torsion_stiffness(L, rod::Side::kLeft);
+    omega_star_tip = model.reference_curvature_at(L, rod::Side::kLeft);
+    knots = model.breakpoints();
+    knots.push_back(0.0);
+    knots.push_back(0.5 * L);  // a step node at L/2 (the bending radius samples it)
+    knots.push_back(L);
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+    for (double s : knots) knot_jumps.push_back(model.jumps_at(s));
+    // psi A is a polynomial between the knots (a linear diameter's quadratic area times a
+    // linear density): its largest value at the knots (up to the bulge of a product of two
+    // linear factors, which only sets a scale) and its integral by 8-point Gauss-Legendre
+    // on each piece (exact to degree 15).
+    static const double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                 -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                                 0.7966664774136267,  0.9602898564975363};
+    static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                 0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                 0.2223810344533745, 0.1012285362903763};
+    rho_A_ref = 0.0;
+    for (std::size_t k = 0; k < knots.size(); ++k) {
+      rho_A_ref = std::max({rho_A_ref, model.mass_per_length_kg_m(knots[k], rod::Side::kLeft),
+                            model.mass_per_length_kg_m(knots[k], rod::Side::kRight)});
+    }
+    double mass = 0.0;
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+      const double a = knots[k], b = knots[k + 1];
+      for (int g = 0; g < 8; ++g)
+        mass += 0.5 * (b - a) * gw[g] * model.mass_per_length_kg_m(0.5 * (a + b + (b - a) * gx[g]));
+    }
+    weight_length = rho_A_ref > 0.0 ? mass / rho_A_ref : L;
+  }
+}
+
+void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
+                            double& wf) const {
+  Kn = model.shear_extension_stiffness(s, side);
+  Kw = model.bending_torsion_stiffness(s, side);
+  ws = model.reference_curvature_at(s, side);
+  wf = rho_A_ref > 0.0 ? model.mass_per_length_kg_m(s, side) / rho_A_ref : 1.0;
 }
 
 int RodProblem::state_dimension(const rod::RodModel& m, bool planar_state) {

@@ -47,6 +47,23 @@ struct RodProblem {
   std::vector<double> length_ratio;
   std::vector<double> count;
   std::vector<bool> straight;
+
+  // A body whose properties vary along s (rod::RodModel::uniform_body() false): the members
+  // K_nu, K_omega, omega_star above hold the values at s = 0 (initial guess, scales), the
+  // *_tip ones those at s = L (tip conditions), and the IVP is integrated piece by piece
+  // between `knots` (0, every breakpoint of the profiles, L/2, L). For a uniform body the tip
+  // values equal the base ones and knots is empty.
+  bool uniform = true;
+  std::vector<double> knots;
+  std::vector<bool> knot_jumps;  // per knot: whether a property jumps there
+  Vec3 K_nu_tip, K_omega_tip, omega_star_tip;
+  /// The weight per length is f_ext_W times weight_factor(s) = psi A(s) / psi A_ref (psi A_ref:
+  /// the largest psi A along s; 1 for a uniform body), and weight_length = int_0^L of it
+  /// (L for a uniform body).
+  double rho_A_ref = 0.0;
+  double weight_length = 0.0;
+  /// The stiffnesses, omega* and weight factor at s (one-sided limit `side` at a jump).
+  void properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
 };
 
 }  // namespace tcasim::cosserat::internal

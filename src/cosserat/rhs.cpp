@@ -31,6 +31,14 @@ RodRhs::RodRhs(const rod::RodModel& m, bool planar_layout, bool sensitivities)
     rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
   }
   cache.resize(n_act);
+  if (!uniform) {
+    pieces.knots = knots;
+    pieces.enter = [this](double lo, double hi) { piece_mid = 0.5 * (lo + hi); };
+    pieces.jump = [this](std::size_t k, Eigen::VectorXd& yy) { return strain_jump(k, yy, 0); };
+    pieces.jump_sens = [this](std::size_t k, Eigen::VectorXd& yy) {
+      return strain_jump(k, yy, nx);
+    };
+  }
   if (sensitivities && nx <= kMaxSensitivityUnknowns) {
     rhs_ws.resize(6, nx);
     if (planar) {
@@ -51,15 +59,22 @@ void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) 
   const Vec3 e = yy.segment<3>(kNu);  // nu - nu* (shooting.hpp layout)
   const Vec3 nu = nu_star + e;
   const Vec3 omega = yy.segment<3>(kOmega);
+  Local k = local(s);
   // [Pawlowski2019] Eqs. (9)-(10): n_B = K_nu (nu - nu*), m_B = K_omega (omega - omega*).
-  const Vec3 n_B = K_nu.cwiseProduct(e);
-  const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
+  const Vec3 n_B = k.Kn.cwiseProduct(e);
+  const Vec3 m_B = k.Kw.cwiseProduct(omega - k.ws);
 
   // M = K + sum_i U_i A_i U_i^T (StringSystem), A_i = c_i T_i P_i / |q_i|.
-  StringSystem M(K_nu, K_omega, K_nu_inv, K_omega_inv);
+  StringSystem M(k.Kn, k.Kw, k.Kn_inv, k.Kw_inv);
   // b_nu = -omega x n_B - R^T f_ext - sum g_i;  b_omega = -omega x m_B - nu x n_B - sum r_i x g_i
-  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * (uniform ? f_ext_W : Vec3(k.wf * f_ext_W));
   Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+  if (!uniform) {
+    // n_B' = K_nu e' + K_nu' e, m_B' = K_omega omega' + K_omega' (omega - omega*) - K_omega
+    // omega*'.
+    b_nu -= k.dKn.cwiseProduct(e);
+    b_omega += k.Kw.cwiseProduct(k.dws) - k.dKw.cwiseProduct(omega - k.ws);
+  }
   for (int i = 0; i < n_act; ++i) {
     const rod::Routing& routing = model.actuators[i].routing;
     Vec3 r, dr, ddr;
@@ -97,7 +112,12 @@ void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) 
   dy.segment<3>(kP) = R * nu;
   Eigen::Map<Mat3>(dy.data() + kR) = R * hat(omega);
   dy.segment<6>(kNu) = z;
-  dy.segment<3>(kC) = yy.segment<3>(kP);  // c' = p
+  // c' = p (the weight factor times p for a body whose psi A varies)
+  if (uniform) {
+    dy.segment<3>(kC) = yy.segment<3>(kP);
+  } else {
+    dy.segment<3>(kC) = k.wf * yy.segment<3>(kP);
+  }
 }
 
 void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const {
@@ -106,11 +126,17 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
   const Vec3 e(yy + kNu);  // nu - nu*
   const Vec3 nu = nu_star + e;
   const Vec3 omega(yy + kOmega);
-  const Vec3 n_B = K_nu.cwiseProduct(e);
-  const Vec3 m_B = K_omega.cwiseProduct(omega - omega_star);
-  StringSystem lu(K_nu, K_omega, K_nu_inv, K_omega_inv);
-  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_ext_W;
+  const Local k = local(s);
+  const Vec3 f_W = uniform ? f_ext_W : Vec3(k.wf * f_ext_W);
+  const Vec3 n_B = k.Kn.cwiseProduct(e);
+  const Vec3 m_B = k.Kw.cwiseProduct(omega - k.ws);
+  StringSystem lu(k.Kn, k.Kw, k.Kn_inv, k.Kw_inv);
+  Vec3 b_nu = -omega.cross(n_B) - R.transpose() * f_W;
   Vec3 b_omega = -omega.cross(m_B) - nu.cross(n_B);
+  if (!uniform) {
+    b_nu -= k.dKn.cwiseProduct(e);
+    b_omega += k.Kw.cwiseProduct(k.dws) - k.dKw.cwiseProduct(omega - k.ws);
+  }
   for (int i = 0; i < n_act; ++i) {
     ActuatorCache& c = cache[i];
     const rod::Routing& routing = model.actuators[i].routing;
@@ -144,7 +170,11 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
   dY.segment<3>(kP) = R * nu;
   Eigen::Map<Mat3>(dY.data() + kR) = R * hat(omega);
   dY.segment<6>(kNu) = z;
-  dY.segment<3>(kC) = Ya.segment<3>(kP);
+  if (uniform) {
+    dY.segment<3>(kC) = Ya.segment<3>(kP);
+  } else {
+    dY.segment<3>(kC) = k.wf * Ya.segment<3>(kP);
+  }
   const Vec3 zn = z.head<3>(), zo = z.tail<3>();
   for (int i = 0; i < n_act; ++i) {
     ActuatorCache& c = cache[i];
@@ -158,9 +188,13 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
     double* dyj = dY.data() + dim * (j + 1);
     const Eigen::Map<const Mat3> dR(yj + kR);
     const Vec3 dnu(yj + kNu), dom(yj + kOmega);
-    const Vec3 dn_B = K_nu.cwiseProduct(dnu), dm_B = K_omega.cwiseProduct(dom);
-    Vec3 db_nu = -dom.cross(n_B) - omega.cross(dn_B) - dR.transpose() * f_ext_W;
+    const Vec3 dn_B = k.Kn.cwiseProduct(dnu), dm_B = k.Kw.cwiseProduct(dom);
+    Vec3 db_nu = -dom.cross(n_B) - omega.cross(dn_B) - dR.transpose() * f_W;
     Vec3 db_om = -dom.cross(m_B) - omega.cross(dm_B) - dnu.cross(n_B) - nu.cross(dn_B);
+    if (!uniform) {
+      db_nu -= k.dKn.cwiseProduct(dnu);
+      db_om -= k.dKw.cwiseProduct(dom);
+    }
     for (int i = 0; i < n_act; ++i) {
       const ActuatorCache& c = cache[i];
       const Vec3 dq = dnu + dom.cross(c.r);
@@ -187,10 +221,102 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
     B.col(j) << db_nu, db_om;
     Eigen::Map<Vec3>(dyj + kP) = dR * nu + R * dnu;
     Eigen::Map<Mat3>(dyj + kR) = dR * hat(omega) + R * hat(dom);
-    Eigen::Map<Vec3>(dyj + kC) = Vec3(yj + kP);
+    Eigen::Map<Vec3>(dyj + kC) = uniform ? Vec3(yj + kP) : Vec3(k.wf * Vec3(yj + kP));
   }
   lu.solve_in_place(B);
   for (int j = 0; j < nx; ++j) Eigen::Map<Vec6>(dY.data() + dim * (j + 1) + kNu) = B.col(j);
+}
+
+namespace {
+
+/// The total wrench W(z, s) across a section (RodRhs::strain_jump) and, if M is given, its
+/// derivative dW/dz = diag(K_nu, K_omega) + sum_i U_i A_i U_i^T (the strain system matrix).
+struct SectionWrench {
+  Vec6 W;
+  Mat6 M;
+  std::vector<Vec6> u;  // per actuator: (qh_i, r_i x qh_i)
+};
+
+void section_wrench(const RodRhs& p, double s, const RodRhs::Local& k, const Vec3& e,
+                    const Vec3& omega, SectionWrench& out) {
+  out.W.head<3>() = k.Kn.cwiseProduct(e);
+  out.W.tail<3>() = k.Kw.cwiseProduct(omega - k.ws);
+  out.M.setZero();
+  out.M.diagonal() << k.Kn, k.Kw;
+  out.u.assign(p.n_act, Vec6::Zero());
+  const Vec3 nu = p.nu_star + e;
+  for (int i = 0; i < p.n_act; ++i) {
+    const rod::Routing& routing = p.model.actuators[i].routing;
+    const Vec3 r = routing.r(s);
+    const Vec3 q = nu + omega.cross(r) + routing.dr(s);
+    const double q_norm = q.norm();
+    const Vec3 qh = q / q_norm;
+    out.u[i] << qh, r.cross(qh);
+    if (p.cT[i] == 0.0) continue;
+    out.W += p.cT[i] * out.u[i];
+    // dq = de - r x domega = U^T dz, U = [I; hat(r)]: dW = U A U^T dz.
+    Eigen::Matrix<double, 6, 3> U;
+    U << Mat3::Identity(), hat(r);
+    const Mat3 A = p.cT[i] * (Mat3::Identity() - qh * qh.transpose()) / q_norm;
+    out.M += U * A * U.transpose();
+  }
+}
+
+}  // namespace
+
+bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) const {
+  if (!knot_jumps[knot]) return true;
+  const double s = knots[knot];
+  Local left, right;
+  properties(s, rod::Side::kLeft, left.Kn, left.Kw, left.ws, left.wf);
+  properties(s, rod::Side::kRight, right.Kn, right.Kw, right.ws, right.wf);
+  const Vec3 e_l = Y.segment<3>(kNu), om_l = Y.segment<3>(kOmega);
+  SectionWrench wl, wr;
+  section_wrench(*this, s, left, e_l, om_l, wl);
+  // Start from the strains of the rod's own wrench (exact without loaded strings).
+  Vec3 e = wl.W.head<3>().cwiseQuotient(right.Kn);
+  Vec3 om = right.ws + wl.W.tail<3>().cwiseQuotient(right.Kw);
+  bool loaded = false;
+  for (int i = 0; i < n_act; ++i) loaded = loaded || cT[i] != 0.0;
+  if (loaded) {
+    // Subtract the strings' share at the left strains as the start, then Newton.
+    Vec6 rod_part = wl.W;
+    for (int i = 0; i < n_act; ++i) rod_part -= cT[i] * wl.u[i];
+    e = rod_part.head<3>().cwiseQuotient(right.Kn);
+    om = right.ws + rod_part.tail<3>().cwiseQuotient(right.Kw);
+    const double scale = wl.W.cwiseAbs().maxCoeff();
+    bool converged = false;
+    for (int it = 0; it < 30 && !converged; ++it) {
+      section_wrench(*this, s, right, e, om, wr);
+      const Vec6 F = wr.W - wl.W;
+      const Vec6 dz = wr.M.partialPivLu().solve(F);
+      if (!dz.allFinite()) return false;
+      e -= dz.head<3>();
+      om -= dz.tail<3>();
+      converged = F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
+                  dz.cwiseAbs().maxCoeff() <=
+                      1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * L + 1e-300);
+    }
+    if (!converged) return false;
+  }
+  Y.segment<3>(kNu) = e;
+  Y.segment<3>(kOmega) = om;
+  if (directions == 0) return Y.head(dim).allFinite();
+  section_wrench(*this, s, right, e, om, wr);
+  const Eigen::PartialPivLU<Mat6> lu(wr.M);
+  for (int j = 0; j < directions; ++j) {
+    double* yj = Y.data() + dim * (j + 1);
+    Vec6 dz_l;
+    dz_l << Vec3(yj + kNu), Vec3(yj + kOmega);
+    Vec6 b = wl.M * dz_l;
+    for (int i = 0; i < n_act; ++i) {
+      if (unknown_of[i] == j) b += count[i] * (wl.u[i] - wr.u[i]);
+    }
+    const Vec6 dz = lu.solve(b);
+    Eigen::Map<Vec3>(yj + kNu) = dz.head<3>();
+    Eigen::Map<Vec3>(yj + kOmega) = dz.tail<3>();
+  }
+  return Y.allFinite();
 }
 
 void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x) {
@@ -203,7 +329,11 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
       rod::ramp_segments(tca.material(), act.actuators[i].segments, lambda, scaled_segments[i]);
     }
   }
-  f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+  if (uniform) {
+    f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+  } else {
+    f_ext_W = lambda * rho_A_ref * act.gravity_W_m_s2;  // times weight_factor(s) in the RHS
+  }
   if (planar) {
     prod.cT = cT;
     const Vec3 f_B0 = model.R_WB0.transpose() * f_ext_W;

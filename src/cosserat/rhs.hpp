@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/ode.hpp"
+#include "cosserat/integration_level.hpp"
 #include "cosserat/planar.hpp"
 #include "cosserat/problem.hpp"
 #include "cosserat/shooting.hpp"
@@ -34,6 +35,37 @@ struct RodRhs : RodProblem {
   /// y(0) for unknowns x (3-D or planar layout).
   void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const;
 
+  /// Stiffnesses (and reciprocals), omega* and weight factor at s: the constant members for
+  /// a uniform body, else the model's values on the side of s inside the current piece.
+  /// With their s-derivatives dKn, dKw, dws (varying bodies only; zero otherwise).
+  struct Local {
+    Vec3 Kn, Kw, Kn_inv, Kw_inv, ws;
+    double wf = 1.0;
+    Vec3 dKn = Vec3::Zero(), dKw = Vec3::Zero(), dws = Vec3::Zero();
+  };
+  Local local(double s) const {
+    if (uniform) return {K_nu, K_omega, K_nu_inv, K_omega_inv, omega_star, 1.0};
+    Local k;
+    const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
+    properties(s, side, k.Kn, k.Kw, k.ws, k.wf);
+    model.property_slopes(s, side, k.dKn, k.dKw, k.dws);
+    k.Kn_inv = k.Kn.cwiseInverse();
+    k.Kw_inv = k.Kw.cwiseInverse();
+    return k;
+  }
+
+  /// A body varying along s: the pieces of the IVP (nullptr for a uniform body).
+  const internal::PieceHooks* piece_hooks() const { return uniform ? nullptr : &pieces; }
+  /// The strain jump at knot k (docs/conventions.md "Bodies that vary along s"): the total
+  /// wrench across the section, rod plus strings (body frame),
+  ///   W(z, s) = ( K_nu(s) e + sum c_i T_i qh_i,  K_omega(s) (omega - omega*(s)) + sum c_i T_i
+  ///   r_i x qh_i ),
+  /// is continuous, so z+ = (e, omega) on the right solves W(z+, s+) = W(z-, s-) (Newton with
+  /// the exact derivative, the strain system matrix M; direct without loaded strings). With
+  /// `directions` > 0, Y holds the sensitivity blocks too: dz+ = M+^-1 (M- dz- + sum_i dcT_i
+  /// (u_i(z-) - u_i(z+))), u_i = (qh_i, r_i x qh_i). False if the Newton iteration fails.
+  bool strain_jump(std::size_t k, Eigen::VectorXd& Y, int directions) const;
+
   // Current IVP parameters (set_parameters, before each integration).
   std::vector<double> cT;  // count * tension per actuator
   Vec3 f_ext_W = Vec3::Zero();
@@ -48,6 +80,8 @@ struct RodRhs : RodProblem {
     double q_norm = 1.0;
   };
   mutable std::vector<ActuatorCache> cache;
+  internal::PieceHooks pieces;     // non-uniform bodies: the knots and the jump functions
+  mutable double piece_mid = 0.0;  // midpoint of the piece being integrated
   mutable Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxSensitivityUnknowns> rhs_ws;  // 6 x nx
 };
 

@@ -46,18 +46,19 @@ ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o, Impl* paren
       options(with_jacobian_fallback(validated(m, o), nx)),
       parent(parent_3d),
       fine_level(dim, nx, options.integrator, options.kinematics,
-                 options.jacobian == JacobianMethod::kSensitivity) {
+                 options.jacobian == JacobianMethod::kSensitivity, piece_hooks()) {
   const bool sensitivities = options.jacobian == JacobianMethod::kSensitivity;
   ode::IntegratorOptions coarse = options.integrator;
   coarse.steps = options.coarse_steps;
   const bool use_coarse = ode::is_fixed_step(options.integrator.method) &&
                           options.coarse_steps > 0 &&
                           2 * options.coarse_steps <= options.integrator.steps;
-  if (use_coarse) coarse_level.emplace(dim, nx, coarse, options.kinematics, sensitivities);
+  if (use_coarse)
+    coarse_level.emplace(dim, nx, coarse, options.kinematics, sensitivities, piece_hooks());
   ode::IntegratorOptions mid = coarse;
   mid.steps = 2 * options.coarse_steps;
   const bool use_mid = use_coarse && 2 * mid.steps <= options.integrator.steps;
-  if (use_mid) mid_level.emplace(dim, nx, mid, options.kinematics, sensitivities);
+  if (use_mid) mid_level.emplace(dim, nx, mid, options.kinematics, sensitivities, piece_hooks());
   y.resize(dim);
   if (sensitivities) Y.resize(dim * (1 + nx));
   level = &fine_level;
@@ -257,7 +258,7 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     ode::IntegratorOptions io = options.integrator;
     io.output_intervals = options.centerline_intervals;
     if (io.method == ode::Method::kCvode && io.output_intervals == 0) io.output_intervals = 64;
-    output_level.emplace(dim, 0, io, options.kinematics, false);
+    output_level.emplace(dim, 0, io, options.kinematics, false, piece_hooks());
   }
   set_parameters(act, 1.0, sol.unknowns);
   initial_state(sol.unknowns, y);

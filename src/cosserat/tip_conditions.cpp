@@ -43,10 +43,10 @@ bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eige
   const Vec3 nu = nu_star + e;
   const Vec3 omega = yL.segment<3>(kOmega);
   // The holder's reaction (an unknown, not scaled by lambda) adds to the applied tip force.
-  Vec3 rn = K_nu.cwiseProduct(e) -
+  Vec3 rn = K_nu_tip.cwiseProduct(e) -
             R.transpose() * (lambda * rod::tip_force_with_weight_W_N(model, act) + reaction_W(x));
-  Vec3 rm =
-      K_omega.cwiseProduct(omega - omega_star) - R.transpose() * (lambda * act.tip_moment_W_Nm);
+  Vec3 rm = K_omega_tip.cwiseProduct(omega - omega_star_tip) -
+            R.transpose() * (lambda * act.tip_moment_W_Nm);
   for (int i = 0; i < n_act; ++i) {
     if (cT[i] == 0.0) continue;
     const Vec3 ri = model.actuators[i].routing.r(L);
@@ -95,8 +95,8 @@ bool TipConditions::tip_jacobian(const Actuation& act, double lambda, const Eige
     const double* yj = Y.data() + dim * (j + 1);
     const Eigen::Map<const Mat3> dR(yj + kR);
     const Vec3 dnu(yj + kNu), dom(yj + kOmega);
-    Vec3 drn = K_nu.cwiseProduct(dnu) - dR.transpose() * F_e;
-    Vec3 drm = K_omega.cwiseProduct(dom) - dR.transpose() * M_e;
+    Vec3 drn = K_nu_tip.cwiseProduct(dnu) - dR.transpose() * F_e;
+    Vec3 drm = K_omega_tip.cwiseProduct(dom) - dR.transpose() * M_e;
     for (int i = 0; i < n_act; ++i) {
       const double dcT = unknown_of[i] == j ? count[i] : 0.0;
       if (cT[i] == 0.0 && dcT == 0.0) continue;
@@ -162,8 +162,10 @@ void TipConditions::equilibrium(const Actuation& act, const Eigen::VectorXd& x,
   const Vec3 c = yL.segment<3>(kC);
   const Vec3 F_tip =
       rod::tip_force_with_weight_W_N(model, act) + reaction_W(x);  // applied load plus the holder's
-  Vec3 n_exp = F_tip + L * w;
-  Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - L * p0).cross(w);
+  // weight_length = L for a uniform body (int_0^L psi A / psi A_ref ds otherwise, with c the
+  // matching weighted integral of p).
+  Vec3 n_exp = F_tip + weight_length * w;
+  Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - weight_length * p0).cross(w);
   for (int i = 0; i < n_act; ++i) {
     const rod::Routing& ro = model.actuators[i].routing;
     const Vec3 r0 = ro.r(0.0);

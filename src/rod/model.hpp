@@ -14,12 +14,24 @@
 #include <vector>
 
 #include "common/time_profile.hpp"
+#include "rod/profile.hpp"
 #include "tca/tca.hpp"
 #include "tca/thermal.hpp"
 
 namespace tcasim::rod {
 
-/// Cross-section properties of the body.
+/// Derived properties of the section at one s.
+struct SectionProperties {
+  double width_m = 0.0, height_m = 0.0;  ///< circle: both the diameter
+  double area_m2 = 0.0, I_x_m4 = 0.0, I_y_m4 = 0.0, J_m4 = 0.0;
+};
+
+/// Saint-Venant torsion constant of a w x h rectangle [m^4] ([TimoshenkoGoodier1970] Sec. 109).
+double rectangle_saint_venant_torsion(double w_m, double h_m);
+
+/// Cross-section properties of the body. The scalar fields hold the values at s = 0; a body
+/// whose section varies along s (docs/scenario-format.md "Profiles along the body") has the
+/// given scalars as profiles, and properties_at() derives the others pointwise.
 struct Section {
   enum class Shape { kCircle, kRectangle, kCustom };
   Shape shape = Shape::kCircle;
@@ -30,6 +42,18 @@ struct Section {
   double I_y_m4 = 0.0;    ///< second moment about body y (int x^2 dA)
   double J_m4 = 0.0;      ///< torsion constant (polar by default, or Saint-Venant)
   bool saint_venant_torsion = false;
+  /// The scalars the file gives, each a constant or a profile along s: circle: width (the
+  /// diameter); rectangle: width, height; custom: area, I_x, I_y, J.
+  Profile width_profile, height_profile, area_profile, I_x_profile, I_y_profile, J_profile;
+  /// The properties at s (at a jump: the limit from `side`): a circle's I is pi d(s)^4 / 64.
+  SectionProperties properties_at(double s, Side side = Side::kRight) const;
+  /// d/ds of properties_at (the slopes of the profiles through the shape's formulas; the
+  /// Saint-Venant J of a rectangle by central differences of its series in w and h).
+  SectionProperties derivatives_at(double s, Side side = Side::kRight) const;
+  /// True if any given scalar is a profile.
+  bool varies() const;
+  /// Sets the scalar fields to properties_at(0).
+  void set_base_values();
   /// Half extent of the section along the direction (dir_x, dir_y) in the section plane
   /// (any non-zero length) [m]: the distance from the centerline to the edge, used by the
   /// radius metric and the actuator-offset check. Circle: D/2; rectangle: distance to the
@@ -44,6 +68,10 @@ struct BodyMaterial {
   double poisson_ratio = 0.0;      ///< nu
   double shear_modulus_Pa = 0.0;   ///< G = E / (2 (1 + nu))
   double density_kg_m3 = 0.0;      ///< psi (0 allowed: massless)
+  double viscosity_Pa_s = 0.0;     ///< eta, Kelvin-Voigt (dynamics only; >= 0)
+  /// E, psi and eta along s (the scalar fields above hold their values at s = 0).
+  Profile youngs_modulus_profile, density_profile, viscosity_profile;
+  bool varies() const;
 };
 
 /// Path of a string in the body frame: r(s) = (x, y, 0) in the section plane.
@@ -117,7 +145,9 @@ struct RodModel {
   double length_m = 0.0;  ///< L, reference centerline length
   Section section;
   BodyMaterial material;
-  Eigen::Vector3d reference_curvature_B_1_m = Eigen::Vector3d::Zero();  ///< omega*
+  Eigen::Vector3d reference_curvature_B_1_m = Eigen::Vector3d::Zero();  ///< omega* at s = 0
+  /// omega* along s, per body-frame component (constants unless the file gives profiles).
+  std::array<Profile, 3> reference_curvature_profile;
   Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();
   Eigen::Vector3d tip_moment_W_Nm = Eigen::Vector3d::Zero();
@@ -142,6 +172,25 @@ struct RodModel {
   Eigen::Vector3d bending_torsion_stiffness() const;
   /// Weight per unit length psi A g in the world frame [N/m].
   Eigen::Vector3d weight_per_length_W_N_m() const;
+
+  // --- Properties along s (docs/scenario-format.md "Profiles along the body"). At a
+  // breakpoint where a profile jumps, `side` selects the one-sided limit. For a uniform
+  // body they equal the s-independent functions above.
+  /// True if no section scalar, E, density or omega* component varies along s.
+  bool uniform_body() const;
+  Eigen::Vector3d shear_extension_stiffness(double s, Side side = Side::kRight) const;
+  Eigen::Vector3d bending_torsion_stiffness(double s, Side side = Side::kRight) const;
+  /// psi(s) A(s) [kg/m].
+  double mass_per_length_kg_m(double s, Side side = Side::kRight) const;
+  Eigen::Vector3d reference_curvature_at(double s, Side side = Side::kRight) const;
+  /// d/ds of the two stiffnesses and of omega* at s (zero for a uniform body): what the
+  /// shooting right-hand side needs, n_B' = K_nu e' + K_nu' e and likewise for m_B.
+  void property_slopes(double s, Side side, Eigen::Vector3d& dK_se, Eigen::Vector3d& dK_bt,
+                       Eigen::Vector3d& domega_star) const;
+  /// Every listed s of every profile strictly inside (0, L), sorted, without repeats.
+  std::vector<double> breakpoints() const;
+  /// Whether any property jumps at s (left and right limits differ).
+  bool jumps_at(double s) const;
 };
 
 /// A copy of `model` with every TCA rebuilt on `material` (measurable parameters kept; the

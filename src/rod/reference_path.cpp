@@ -1,10 +1,12 @@
 #include "rod/reference_path.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "common/units.hpp"
 
@@ -124,6 +126,46 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
   const double one_period = whole > 0.0 ? integrate(speed, lo, lo + period) : 0.0;
   const double rest = integrate(speed, lo + whole * period, hi);
   out.length_m = (whole * one_period + rest) / (2.0 * units::kPi * std::abs(k));
+  return out;
+}
+
+ReferencePath reference_path(const Routing& routing, const RodModel& model) {
+  const auto& prof = model.reference_curvature_profile;
+  if (prof[0].is_constant() && prof[1].is_constant() && prof[2].is_constant()) {
+    return reference_path(routing, model.reference_curvature_B_1_m, model.length_m);
+  }
+  std::vector<double> knots{0.0, model.length_m};
+  for (const Profile& p : prof) {
+    for (double s : p.breakpoints()) knots.push_back(s);
+  }
+  std::sort(knots.begin(), knots.end());
+  knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+  ReferencePath out;
+  out.min_axial = HUGE_VAL;
+  const bool straight = routing.type == Routing::Type::kStraight;
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    const double a = knots[k], b = knots[k + 1];
+    if (!(b > a)) continue;
+    const double mid = 0.5 * (a + b);
+    const auto omega = [&](double s) {
+      const Side side = s < mid ? Side::kRight : Side::kLeft;  // the piece's own limits
+      return Eigen::Vector3d(prof[0].value(s, side), prof[1].value(s, side),
+                             prof[2].value(s, side));
+    };
+    const auto q = [&](double s) -> Eigen::Vector3d {
+      return Eigen::Vector3d::UnitZ() + omega(s).cross(routing.r(s)) + routing.dr(s);
+    };
+    out.length_m += integrate([&](double s) { return q(s).norm(); }, a, b);
+    const int samples = straight ? 1 : 256;
+    for (int i = 0; i <= samples; ++i) {
+      const double s = a + (b - a) * i / samples;
+      const double axial = q(s).z();
+      if (axial < out.min_axial) {
+        out.min_axial = axial;
+        out.min_axial_s_m = s;
+      }
+    }
+  }
   return out;
 }
 

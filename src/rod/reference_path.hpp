@@ -29,4 +29,12 @@ struct ReferencePath {
 ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
                              double length_m);
 
+/// The reference path of `routing` on `model`'s body, whose omega* may vary along s
+/// (docs/scenario-format.md "Profiles along the body"): the constant-curvature function above
+/// when omega* is constant; else, on each piece between the breakpoints of omega*'s profiles,
+/// composite Gauss-Legendre quadrature refined to round-off, and the minimum of e3 . q* at
+/// the piece ends (exact for a straight string: it is linear in s there) and, for a helix, at
+/// 256 points per piece.
+ReferencePath reference_path(const Routing& routing, const RodModel& model);
+
 }  // namespace tcasim::rod

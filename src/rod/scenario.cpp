@@ -135,12 +135,15 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   const Obj body(o.required("body"), "body",
                  {"length_m", "section", "material", "reference_curvature_1_m"});
   m.length_m = body.positive("length_m");
-  m.section = parse_section(body.required("section"), body.key("section"));
+  m.section = parse_section(body.required("section"), body.key("section"), m.length_m);
   const Obj mat(body.required("material"), body.key("material"),
-                {"youngs_modulus_Pa", "poisson_ratio", "density_kg_m3"});
-  m.material = parse_body_material(mat);
+                {"youngs_modulus_Pa", "poisson_ratio", "density_kg_m3", "viscosity_Pa_s"});
+  m.material = parse_body_material(mat, m.length_m);
   if (body.has("reference_curvature_1_m")) {
-    m.reference_curvature_B_1_m = body.vector3("reference_curvature_1_m");
+    m.reference_curvature_profile =
+        parse_reference_curvature(body, "reference_curvature_1_m", m.length_m);
+    for (int i = 0; i < 3; ++i)
+      m.reference_curvature_B_1_m[i] = m.reference_curvature_profile[i].value(0.0);
   }
 
   if (o.has("gravity_m_s2")) {

@@ -28,6 +28,17 @@ std::optional<double> edge_distance(const Section& s, double x, double y) {
   return s.half_extent_m(x, y) * (1.0 + kEdgeRelativeTolerance);
 }
 
+/// The section against which offsets are checked: for a section that varies along s, the
+/// smallest listed width and height (a piecewise linear profile is smallest at a listed
+/// point; for a rectangle whose two sides are smallest at different s this is conservative).
+Section narrowest_section(const Section& s) {
+  if (!s.varies()) return s;
+  Section n = s;
+  n.width_m = s.width_profile.min_value();
+  n.height_m = s.height_profile.min_value();
+  return n;
+}
+
 Routing parse_routing(const json& j, const std::string& path, const Section& section) {
   const std::string type = peek_choice(j, path, "type", {"straight", "helix"});
   Routing r;
@@ -190,8 +201,7 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
 /// Refuses a reference path that folds, a coiled length that does not match the path
 /// without a pre_elongation_m, and a pre-elongation the TCA cannot have.
 double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
-  const ReferencePath ref =
-      reference_path(a.routing, model.reference_curvature_B_1_m, model.length_m);
+  const ReferencePath ref = reference_path(a.routing, model);
   const bool straight = a.routing.type == Routing::Type::kStraight;
   const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
   require(
@@ -247,7 +257,8 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
   const Obj o(j, path, {"name", "comment", "routing", "count", "drive", "pre_elongation_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
-  a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section);
+  a.routing =
+      parse_routing(o.required("routing"), o.key("routing"), narrowest_section(model.section));
   if (o.has("count")) {
     // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
     // possibly); 1e9 or 2.0 are floats, which are refused.

@@ -16,39 +16,7 @@
 #include "rod/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
-namespace {
-
-// ---------------------------------------------------------------------------------------
-// Body
-
-/// Saint-Venant torsion constant of a w x h rectangle.
-/// [TimoshenkoGoodier1970] Sec. 109 (torsion of a rectangular bar), with a >= b the sides:
-///   J = a b^3/3 - (64 b^4/pi^5) sum_{n = 1, 3, 5, ...} tanh(n pi a/(2 b))/n^5.
-/// The series is evaluated as sum 1/n^5 - sum (1 - tanh)/n^5: the first sum over odd n is
-/// (1 - 2^-5) zeta(5) in closed form and the second decays like exp(-n pi), so the result
-/// is exact to round-off after a handful of terms.
-double rectangle_saint_venant_torsion(double w_m, double h_m) {
-  constexpr double kZeta5 = 1.0369277551433699263;      // Riemann zeta(5)
-  constexpr double kOddZeta5 = (31.0 / 32.0) * kZeta5;  // sum over odd n of 1/n^5
-  constexpr int kMaxTerms = 200;
-  const double a = std::max(w_m, h_m);
-  const double b = std::min(w_m, h_m);
-  double deficit = 0.0;  // sum (1 - tanh(x_n))/n^5
-  for (int k = 0; k < kMaxTerms; ++k) {
-    const double n = 2.0 * k + 1.0;
-    const double x = n * units::kPi * a / (2.0 * b);
-    const double e = std::exp(-2.0 * x);
-    const double term = 2.0 * e / (1.0 + e) / std::pow(n, 5);  // 1 - tanh(x) = 2 e^-2x/(1 + e^-2x)
-    deficit += term;
-    if (term < std::numeric_limits<double>::epsilon() * 1e-3) break;
-  }
-  const double pi5 = std::pow(units::kPi, 5);
-  return a * b * b * b / 3.0 - 64.0 * std::pow(b, 4) / pi5 * (kOddZeta5 - deficit);
-}
-
-}  // namespace
-
-Section parse_section(const json& j, const std::string& path) {
+Section parse_section(const json& j, const std::string& path, double length_m) {
   const std::string shape = peek_choice(j, path, "shape", {"circle", "rectangle", "custom"});
   Section s;
   bool torsion_allowed = true;
@@ -65,49 +33,64 @@ Section parse_section(const json& j, const std::string& path) {
   if (torsion_allowed && o.has("torsion")) {
     s.saint_venant_torsion = o.choice("torsion", {"polar", "saint-venant"}) == "saint-venant";
   }
+  // Each dimension is a number or a profile along s (docs/scenario-format.md "Profiles along
+  // the body"); the derived properties follow pointwise (Section::properties_at).
+  const auto positive = [&](const std::string& k) {
+    return parse_profile_key(o, k, length_m, ValueRule::kPositive);
+  };
   if (shape == "circle") {
     s.shape = Section::Shape::kCircle;
-    const double d = o.positive("diameter_m");
-    s.width_m = d;
-    s.height_m = d;
-    s.area_m2 = units::kPi * d * d / 4.0;
-    s.I_x_m4 = units::kPi * std::pow(d, 4) / 64.0;
-    s.I_y_m4 = s.I_x_m4;
-    // For a circle the Saint-Venant constant equals the polar moment.
-    s.J_m4 = s.I_x_m4 + s.I_y_m4;
+    s.width_profile = positive("diameter_m");
+    s.height_profile = s.width_profile;
   } else if (shape == "rectangle") {
     s.shape = Section::Shape::kRectangle;
-    const double w = o.positive("width_m");
-    const double h = o.positive("height_m");
-    s.width_m = w;
-    s.height_m = h;
-    s.area_m2 = w * h;
-    s.I_x_m4 = w * h * h * h / 12.0;  // int y^2 dA, y along height
-    s.I_y_m4 = h * w * w * w / 12.0;  // int x^2 dA, x along width
-    s.J_m4 = s.saint_venant_torsion ? rectangle_saint_venant_torsion(w, h) : s.I_x_m4 + s.I_y_m4;
+    s.width_profile = positive("width_m");
+    s.height_profile = positive("height_m");
   } else {
     s.shape = Section::Shape::kCustom;
-    s.area_m2 = o.positive("area_m2");
-    s.I_x_m4 = o.positive("I_x_m4");
-    s.I_y_m4 = o.positive("I_y_m4");
-    s.J_m4 = o.positive("J_m4");
+    s.area_profile = positive("area_m2");
+    s.I_x_profile = positive("I_x_m4");
+    s.I_y_profile = positive("I_y_m4");
+    s.J_profile = positive("J_m4");
   }
+  s.set_base_values();
   return s;
 }
 
-BodyMaterial parse_body_material(const Obj& o) {
+BodyMaterial parse_body_material(const Obj& o, double length_m) {
   BodyMaterial m;
-  m.youngs_modulus_Pa = o.positive("youngs_modulus_Pa");
+  m.youngs_modulus_profile =
+      parse_profile_key(o, "youngs_modulus_Pa", length_m, ValueRule::kPositive);
+  m.youngs_modulus_Pa = m.youngs_modulus_profile.value(0.0);
   m.poisson_ratio = o.number("poisson_ratio");
   // 0.5 (incompressible) is allowed: the paper uses it for EcoFlex.
   require(m.poisson_ratio >= 0.0 && m.poisson_ratio <= 0.5, o.key("poisson_ratio"), m.poisson_ratio,
           "must lie in [0, 0.5]");
   m.shear_modulus_Pa = m.youngs_modulus_Pa / (2.0 * (1.0 + m.poisson_ratio));
-  if (const auto psi = o.optional_number("density_kg_m3")) {
-    require(*psi >= 0.0, o.key("density_kg_m3"), *psi, "must not be negative");
-    m.density_kg_m3 = *psi;
+  if (o.has("density_kg_m3")) {
+    m.density_profile = parse_profile_key(o, "density_kg_m3", length_m, ValueRule::kNonNegative);
+    m.density_kg_m3 = m.density_profile.value(0.0);
+  }
+  if (o.has("viscosity_Pa_s")) {
+    m.viscosity_profile = parse_profile_key(o, "viscosity_Pa_s", length_m, ValueRule::kNonNegative);
+    m.viscosity_Pa_s = m.viscosity_profile.value(0.0);
   }
   return m;
+}
+
+/// body.reference_curvature_1_m: three components, each a number or a profile.
+std::array<Profile, 3> parse_reference_curvature(const Obj& o, const std::string& k,
+                                                 double length_m) {
+  const json& v = o.required(k);
+  if (!v.is_array() || v.size() != 3) {
+    throw InputError(o.key(k), show(v),
+                     "must be an array of 3 components, each a number or a profile");
+  }
+  std::array<Profile, 3> out;
+  for (std::size_t i = 0; i < 3; ++i) {
+    out[i] = parse_profile(v[i], fmt::format("{}[{}]", o.key(k), i), length_m, ValueRule::kAny);
+  }
+  return out;
 }
 
 Eigen::Matrix3d parse_rotation(const Obj& o, const std::string& k) {

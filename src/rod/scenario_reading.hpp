@@ -198,10 +198,24 @@ inline std::string peek_choice(const json& j, const std::string& path, const std
 // ---------------------------------------------------------------------------------------
 // Readers of the parts (scenario_body.cpp, scenario_tca.cpp, scenario_actuators.cpp).
 
-/// The `section` object (shape, dimensions, optional torsion constant).
-Section parse_section(const json& j, const std::string& path);
-/// The body's material (E, Poisson ratio or G, density).
-BodyMaterial parse_body_material(const Obj& o);
+/// The `section` object (shape, dimensions, optional torsion constant) of a body of length
+/// length_m; each dimension a number or a profile along s.
+Section parse_section(const json& j, const std::string& path, double length_m);
+/// The body's material (E, Poisson ratio, density, viscosity; E, density and viscosity
+/// numbers or profiles along s).
+BodyMaterial parse_body_material(const Obj& o, double length_m);
+
+/// What a profile's values must satisfy.
+enum class ValueRule { kPositive, kNonNegative, kAny };
+/// A number or a profile {"s_m": [...], "values": [...]} (docs/scenario-format.md "Profiles
+/// along the body") at `key` on a body of length length_m: s_m from 0 to length_m, never
+/// decreasing, each s at most twice, as many values as s, each satisfying `rule`.
+Profile parse_profile(const json& v, const std::string& key, double length_m, ValueRule rule);
+/// parse_profile of the required key k of o.
+Profile parse_profile_key(const Obj& o, const std::string& k, double length_m, ValueRule rule);
+/// body.reference_curvature_1_m (key k of o): three components, each a number or a profile.
+std::array<Profile, 3> parse_reference_curvature(const Obj& o, const std::string& k,
+                                                 double length_m);
 /// A row-major 3x3 rotation at key k (orthonormal to kRotationTolerance, det +1).
 Eigen::Matrix3d parse_rotation(const Obj& o, const std::string& k);
 
@@ -222,7 +236,7 @@ std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j,
 Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model);
 
 // ---------------------------------------------------------------------------------------
-// Time profiles and electro-thermal drives (scenario_profiles.cpp, scenario_thermal.cpp).
+// Time profiles and electro-thermal drives (scenario_time_profiles.cpp, scenario_thermal.cpp).
 
 /// A number (constant) or a time profile object at `key` (docs/scenario-format.md "Time
 /// profiles"); errors name the key path inside the profile.

@@ -1,0 +1,96 @@
+// Cost of a body that varies along s (docs/scenario-format.md "Profiles along the body")
+// against a uniform one at the same accuracy (Google Benchmark), shooting solver, cold solves:
+//  - uniform: the tapered tentacle's mean diameter (15 mm) along its whole length, straight;
+//  - tapered: validation/scenarios/tapered-tentacle.json's body (diameter 20 -> 10 mm, a jump
+//    of the reference curvature at L/2), the same tendons and gravity.
+// Before the benchmarks, main() prints for each body the RK4 steps at which the tip error
+// against a tight reference (RK4, 2048 steps) falls below kTipTolerance, and that error; the
+// benchmarks run each body at its own step count (the same accuracy).
+// Run: build/bench/bench_varying_body --benchmark_repetitions=11
+//        --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cosserat/shooting.hpp"
+#include "rod/scenario.hpp"
+
+namespace {
+
+using namespace tcasim;
+
+/// Tip accuracy both bodies are run at [m] (1e-7 of the 0.2 m length).
+constexpr double kTipTolerance = 2e-8;
+
+nlohmann::json tentacle(bool tapered) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "schema": "tcasim.scenario/1", "name": "tentacle",
+    "body": {"length_m": 0.2, "section": {"shape": "circle", "diameter_m": 0.015},
+             "material": {"youngs_modulus_Pa": 69e3, "poisson_ratio": 0.5,
+                          "density_kg_m3": 1070}},
+    "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+    "gravity_m_s2": [0, 0, -9.80665],
+    "actuators": [
+      {"name": "tendon-x", "routing": {"type": "straight", "offset_m": [0.003, 0.0]},
+       "drive": {"type": "tension", "tension_N": 0.05}},
+      {"name": "tendon-y", "routing": {"type": "straight", "offset_m": [0.0, 0.003]},
+       "drive": {"type": "tension", "tension_N": 0.02}}]})");
+  if (tapered) {
+    j["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.2}}, {"values", {0.020, 0.010}}};
+    j["body"]["reference_curvature_1_m"] = {
+        nlohmann::json{{"s_m", {0.0, 0.1, 0.1, 0.2}}, {"values", {0.0, 0.0, -2.0, -2.0}}}, 0.0,
+        0.0};
+  }
+  return j;
+}
+
+cosserat::Options rk4(int steps) {
+  cosserat::Options o;
+  o.integrator.method = ode::Method::kRk4;
+  o.integrator.steps = steps;
+  return o;
+}
+
+int steps_for(bool tapered) {
+  const rod::RodModel m = rod::parse_scenario(tentacle(tapered));
+  const rod::Result ref = cosserat::solve(m, rk4(2048));
+  for (int n = 4; n <= 1024; n += 2) {
+    const rod::Result r = cosserat::solve(m, rk4(n));
+    const double err = (r.tip_position_W_m - ref.tip_position_W_m).norm();
+    if (r.converged && err <= kTipTolerance) {
+      std::printf("%s: %d RK4 steps, tip error %.2e m (reference 2048 steps)\n",
+                  tapered ? "tapered" : "uniform", n, err);
+      return n;
+    }
+  }
+  return 1024;
+}
+
+void BM_ColdSolve(benchmark::State& state, bool tapered, int steps) {
+  const rod::RodModel m = rod::parse_scenario(tentacle(tapered));
+  cosserat::ShootingSolver solver(m, rk4(steps));
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  for (auto _ : state) {
+    cosserat::Solution sol;
+    const cosserat::Summary s = solver.solve(act, sol);
+    if (!s.converged()) state.SkipWithError("not converged");
+    benchmark::DoNotOptimize(sol.unknowns.data());
+  }
+  state.counters["steps"] = steps;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int uniform_steps = steps_for(false);
+  const int tapered_steps = steps_for(true);
+  benchmark::RegisterBenchmark("uniform_tentacle/cold", BM_ColdSolve, false, uniform_steps)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("tapered_tentacle/cold", BM_ColdSolve, true, tapered_steps)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

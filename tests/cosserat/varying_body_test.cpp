@@ -1,0 +1,144 @@
+// Shooting solver on bodies whose section varies along s (docs/scenario-format.md "Profiles
+// along the body"): closed forms of the end-moment cantilever (tapered, stepped), their
+// observed order, the sensitivities through a jump, and uniform bodies unchanged.
+#include "support/varying_body.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "cosserat/shooting.hpp"
+#include "models.hpp"
+#include "rod/reference_path.hpp"
+#include "rod/scenario.hpp"
+#include "support/convergence.hpp"
+#include "support/finite_difference.hpp"
+
+namespace tcasim::cosserat {
+namespace {
+
+using test_support::MomentCantilever;
+
+Options rk4(int steps) {
+  Options o;
+  o.integrator.method = ode::Method::kRk4;
+  o.integrator.steps = steps;
+  o.tolerance = 1e-12;
+  return o;
+}
+
+Eigen::Vector3d shooting_tip(const rod::RodModel& m, const Options& o) {
+  const rod::Result r = solve(m, o);
+  EXPECT_TRUE(r.converged) << r.message;
+  return r.tip_position_W_m;
+}
+
+/// Tip errors at 8, 16, 32, 64 steps against the closed form, and the order gate (RK4: 4).
+void expect_order_four(const rod::RodModel& m, const Eigen::Vector3d& exact, const char* what) {
+  const std::vector<int> steps{8, 16, 32, 64};
+  std::vector<double> h, err;
+  for (int n : steps) {
+    h.push_back(m.length_m / n);
+    err.push_back((shooting_tip(m, rk4(n)) - exact).norm());
+  }
+  std::printf("%s, RK4 shooting:\n%s", what, test_support::convergence_table(h, err).c_str());
+  test_support::ExpectOrderInBracket(h, err, 4.0, 0.5);
+  // RK4 at h = L/64 on curvatures of about 10/L: below 1e-7 L.
+  EXPECT_LE(err.back(), 1e-7 * m.length_m);
+}
+
+TEST(ShootingVaryingBody, TaperedCantileverUnderEndMomentMatchesTheClosedFormAtOrderFour) {
+  const MomentCantilever c;
+  const rod::RodModel m = rod::parse_scenario(c.tapered());
+  ASSERT_FALSE(m.uniform_body());
+  const Eigen::Vector3d exact = test_support::planar_tip_position(
+      [&](double s) { return c.tapered_theta(s); }, {0.0, c.length_m});
+  expect_order_four(m, exact, "tapered cantilever, end moment");
+}
+
+TEST(ShootingVaryingBody, SteppedSectionUnderEndMomentMatchesTheClosedFormAtOrderFour) {
+  const MomentCantilever c;
+  const rod::RodModel m = rod::parse_scenario(c.stepped());
+  ASSERT_EQ(m.breakpoints(), std::vector<double>{c.step_s_m});
+  ASSERT_TRUE(m.jumps_at(c.step_s_m));
+  const Eigen::Vector3d exact = test_support::planar_tip_position(
+      [&](double s) { return c.stepped_theta(s); }, {0.0, c.step_s_m, c.length_m});
+  expect_order_four(m, exact, "stepped section, end moment");
+  // The curvature jumps by the stiffness ratio (d0/d1)^4 = 16 at the step: the tip rotation
+  // is theta(L) to the discretization error (1.1e-7 rad at 64 steps).
+  const rod::Result r = solve(m, rk4(64));
+  const double theta_tip = std::atan2(r.tip_R_WB(2, 1), r.tip_R_WB(1, 1));
+  EXPECT_NEAR(theta_tip, c.stepped_theta(c.length_m), 1e-6);
+}
+
+TEST(ShootingVaryingBody, ConstantProfilesGiveTheUniformBodysNumbers) {
+  // A profile whose values are all equal is a varying body to the solver (pieces, jumps
+  // that do nothing): it must give the uniform body's tip to the discretization error of
+  // the split steps, and the uniform file must be uniform.
+  MomentCantilever c;
+  const rod::RodModel uniform =
+      rod::parse_scenario(c.scenario({0.0, c.length_m}, {c.d0_m, c.d0_m}));
+  nlohmann::json j = c.tapered();
+  j["body"]["section"]["diameter_m"] = c.d0_m;
+  const rod::RodModel plain = rod::parse_scenario(j);
+  EXPECT_TRUE(plain.uniform_body());
+  EXPECT_FALSE(uniform.uniform_body());
+  const double theta = 64.0 * c.moment_Nm / (units::kPi * c.E_Pa * std::pow(c.d0_m, 4));
+  const Eigen::Vector3d exact =
+      test_support::planar_tip_position([&](double s) { return theta * s; }, {0.0, c.length_m});
+  EXPECT_LE((shooting_tip(plain, rk4(64)) - exact).norm(), 1e-9 * c.length_m);
+  EXPECT_LE((shooting_tip(uniform, rk4(64)) - exact).norm(), 1e-9 * c.length_m);
+}
+
+/// A stepped, tapered body with a TCA and a tension string: the jumps carry loaded strings.
+rod::RodModel loaded_varying_rod() {
+  MomentCantilever c;
+  nlohmann::json j = c.scenario({0.0, 0.03, 0.03, c.length_m}, {0.010, 0.009, 0.007, 0.006});
+  j["body"]["reference_curvature_1_m"] = {
+      0.0, nlohmann::json{{"s_m", {0.0, 0.06, 0.06, c.length_m}}, {"values", {0.0, 1.0, 2.0, 2.0}}},
+      0.0};
+  j["tip_load"]["moment_Nm"] = {2e-4, -1e-4, 0.0};
+  rod::RodModel m = rod::parse_scenario(j);
+  testing::add_tension_string(m, "t", 0.002, 0.001, 0.05);
+  testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.0025, 0.0005,
+                          units::degC_to_K(90.0));
+  // The rest lengths on the precurved part (the helpers assume a straight body).
+  for (rod::Actuator& a : m.actuators) a.rest_length_m = rod::reference_path(a.routing, m).length_m;
+  return m;
+}
+
+TEST(ShootingVaryingBody, SensitivityJacobianThroughLoadedJumpsMatchesCentralDifferences) {
+  const rod::RodModel m = loaded_varying_rod();
+  Eigen::VectorXd x(7);
+  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;
+  Options o = rk4(40);
+  ShootingSolver sens(m, o);
+  o.jacobian = JacobianMethod::kCentralDifference;
+  ShootingSolver cen(m, o);
+  Eigen::MatrixXd Js, Jc;
+  ASSERT_TRUE(sens.jacobian(Actuation::from_model(m), x, Js));
+  ASSERT_TRUE(cen.jacobian(Actuation::from_model(m), x, Jc));
+  const double worst = test_support::worst_column_relative_difference(Js, Jc);
+  std::printf("[jacobian] varying body, sensitivity vs central differences: %.2e\n", worst);
+  EXPECT_LE(worst, 1e-7);
+}
+
+TEST(ShootingVaryingBody, LoadedVaryingBodyConvergesAndBalancesGlobally) {
+  rod::RodModel m = loaded_varying_rod();
+  m.gravity_W_m_s2 = {0.0, 0.0, -9.81};
+  m.material.density_profile =
+      rod::Profile({0.0, 0.05, 0.05, m.length_m}, {1000, 1000, 2000, 1500});
+  m.material.density_kg_m3 = 1000;
+  ShootingSolver solver(m, rk4(64));
+  Solution sol;
+  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  ASSERT_TRUE(s.converged()) << s.message;
+  // The base reaction balances the (varying) weight, the tip wrench and the strings.
+  EXPECT_LE(s.force_imbalance_W_N.norm(), 1e-9);
+  EXPECT_LE(s.moment_imbalance_W_Nm.norm(), 1e-10);
+}
+
+}  // namespace
+}  // namespace tcasim::cosserat
