@@ -42,6 +42,11 @@ struct PointRates {
 constexpr double kStageC[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageA[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+/// Up to this many unknowns the Newton system is factorized densely (partial pivoting):
+/// faster than SparseLU at that size, the same solution.
+constexpr int kDenseUnknowns = 300;
+/// Chord iterations with one factorization before a fresh Jacobian is computed.
+constexpr int kStaleIterations = 6;
 
 }  // namespace
 
@@ -61,6 +66,25 @@ const char* to_string(DynamicsSummary::Status s) {
       return "not-run";
   }
   return "unknown";
+}
+
+double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& o) {
+  const dynamics::SectionAt sec = dynamics::section_at(model, 0.0, o.viscosity_Pa_s);
+  const double a = o.alpha;
+  const double c0 = (1.5 + a) / (o.dt_s * (1.0 + a));
+  // A step turns EI w'''' = -rho A w_tt into w'''' ~ -(rho A / EI) c0^2 w, and the wave
+  // equations of extension, shear and torsion into u'' ~ (rho / stiffness) c0^2 u.
+  const double EI = std::min(sec.K_bt.x(), sec.K_bt.y());
+  double kappa = std::pow(sec.rho_A / EI, 0.25) * std::sqrt(c0);
+  kappa = std::max(kappa, std::sqrt(sec.rho_A / sec.K_se.minCoeff()) * c0);
+  kappa = std::max(kappa, std::sqrt(sec.rho_J.z() / sec.K_bt.z()) * c0);
+  return kappa;
+}
+
+int recommended_steps(const rod::RodModel& model, const DynamicsOptions& o) {
+  const double n = std::ceil(model.length_m * spatial_growth_rate(model, o));
+  const int steps = static_cast<int>(std::min(n, 100000.0));
+  return std::max(20, steps + steps % 2);
 }
 
 struct RodDynamics::Impl {
@@ -109,12 +133,15 @@ struct RodDynamics::Impl {
   std::vector<PointData> trial, cur, prev;
   std::vector<Eigen::VectorXd> grid;  // N + 1 states of the last evaluation
   std::vector<Eigen::VectorXd> grid_converged;
-  Eigen::VectorXd z, z_prev;
-  bool have_prev = false;
+  Eigen::VectorXd z, z_prev, z_prev2;
+  int history_steps = 0;  // converged steps behind z (for the extrapolated start)
   // Jacobian (scaled) and its factorization.
   Eigen::SparseMatrix<double> J_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   bool pattern_analyzed = false, lu_valid = false;
+  bool dense = false;  // unknowns() <= kDenseUnknowns: dense LU instead of SparseLU
+  Eigen::MatrixXd J_dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
   double lu_c0 = -1.0;
   std::vector<Eigen::Triplet<double>> triplets_;
 };
@@ -158,12 +185,14 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   c1 = -2.0 / dt;
   c2 = (0.5 + a) / (dt * (1.0 + a));
   d1 = a / (1.0 + a);
-  // Spatial growth rates of the time-discrete problem (docs/conventions.md): bending
-  // (rho A / EI)^(1/4) sqrt(c0), axial/shear sqrt(rho / E) c0, torsion sqrt(rho J_p / GJ) c0.
-  const double EI = std::min(sec.K_bt.x(), sec.K_bt.y());
-  double kappa = std::pow(sec.rho_A / EI, 0.25) * std::sqrt(c0);
-  kappa = std::max(kappa, std::sqrt(sec.rho_A / std::min(sec.K_se.minCoeff(), 1e300)) * c0);
-  kappa = std::max(kappa, std::sqrt(sec.rho_J.z() / sec.K_bt.z()) * c0);
+  const double kappa = spatial_growth_rate(model, o);
+  if (h * kappa > kMaxStepGrowth) {
+    throw InputError(
+        "dynamics.steps", std::to_string(N),
+        "is too coarse for dt_s = " + format_value(dt) + ": h kappa = " + format_value(h * kappa) +
+            " must be <= " + format_value(kMaxStepGrowth) + " (at least " +
+            std::to_string(static_cast<int>(std::ceil(L * kappa / kMaxStepGrowth))) + " steps)");
+  }
   if (o.intervals > 0) {
     M = o.intervals;
   } else {
@@ -176,6 +205,7 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     }
   }
   S = N / M;
+  dense = unknowns() <= kDenseUnknowns;
   const int n_slots = slots();
   hist.assign(n_slots, {});
   cur_t.assign(n_slots, {});
@@ -305,7 +335,6 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
     const Vec3 qi = nu + om.cross(rt.r(s)) + rt.dr(s);
     dy[kDelta + i] = qi.norm() - length_ratio[i];
   }
-  if (!dy.allFinite()) return false;
   if (!A) return true;
   // Jacobian: direct part (xi fixed) plus df/dxi Z on the (N, M) columns.
   Eigen::MatrixXd& Aj = *A;
@@ -375,6 +404,7 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
         if (Phi) dY = *Phi + (kStageA[j] * h) * dK;
       }
       if (!rhs(s + kStageC[j] * h, Y, 4 * i + j, kj, Phi ? &A : nullptr)) return false;
+      if (!std::isfinite(kj.sum())) return false;
       acc += kStageB[j] * kj;
       if (Phi) {
         dK.noalias() = A * dY;
@@ -469,6 +499,16 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
   }
   if (!r.allFinite()) return false;
   if (jacobian) {
+    if (dense) {
+      J_dense_.setZero(n, n);
+      for (const auto& tr : triplets_) J_dense_(tr.row(), tr.col()) += tr.value();
+      dense_lu_.compute(J_dense_);
+      // PartialPivLU does not report singularity: check the pivots.
+      const Eigen::VectorXd piv = dense_lu_.matrixLU().diagonal().cwiseAbs();
+      lu_valid = piv.allFinite() && piv.minCoeff() > 1e-14 * piv.maxCoeff();
+      lu_c0 = c0_active;
+      return true;
+    }
     J_.resize(n, n);
     J_.setFromTriplets(triplets_.begin(), triplets_.end());
     J_.makeCompressed();
@@ -493,6 +533,7 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   double rn_old = HUGE_VAL, lambda = 1.0;
   bool need_fresh = !lu_valid || lu_c0 != c0_active;
   bool step_taken = false, step_from_fresh = false;
+  int stale_iterations = 0;
   for (int it = 0;; ++it) {
     const bool fresh = need_fresh;
     const bool ok = evaluate(zz, r, fresh);
@@ -519,8 +560,15 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     if (sum.iterations >= opt.max_iterations) {
       sum.status = DynamicsSummary::Status::kMaxIterations;
       sum.message = "no convergence in " + std::to_string(opt.max_iterations) +
-                    " iterations (scaled residual " + std::to_string(rn_old) + ")";
+                    " iterations (scaled residual " + format_value(rn) + ")";
       return sum;
+    }
+    // A stale factorization gets kStaleIterations chord iterations, each of which must halve
+    // the residual; then a fresh Jacobian at the last accepted point.
+    if (step_taken && !step_from_fresh && stale_iterations >= kStaleIterations) {
+      need_fresh = true;
+      stale_iterations = 0;
+      continue;  // re-evaluates at zz with a fresh Jacobian
     }
     if (step_taken && !(rn < (step_from_fresh ? 1.0 : 0.5) * rn_old)) {
       if (!step_from_fresh) {
@@ -543,7 +591,8 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     // Accept zz; next Newton step with the current factorization.
     z_old = zz;
     rn_old = rn;
-    Eigen::VectorXd u = lu_.solve(-r);
+    Eigen::VectorXd u =
+        dense ? Eigen::VectorXd(dense_lu_.solve(-r)) : Eigen::VectorXd(lu_.solve(-r));
     if (!u.allFinite()) {
       sum.status = DynamicsSummary::Status::kSingularJacobian;
       sum.message = "the Newton step is not finite";
@@ -554,6 +603,7 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     zz = z_old + dz;
     step_taken = true;
     step_from_fresh = fresh;
+    if (!fresh) ++stale_iterations;
     ++sum.iterations;
   }
 }
@@ -570,7 +620,7 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   d.F_c = rod::characteristic_force_N(d.model, loads);
   d.c0_active = 0.0;
   d.t = 0.0;
-  d.have_prev = false;
+  d.history_steps = 0;
   for (auto& hh : d.hist) hh = PointRates{};
   d.set_scales();
   // Start: the static shooting solver's base unknowns, integrated over the whole length with
@@ -610,6 +660,7 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   if (!sum.converged()) return sum;
   d.z = zz;
   d.z_prev = zz;
+  d.z_prev2 = zz;
   d.cur = d.trial;
   d.prev = d.trial;
   for (auto& r : d.cur_t) r = PointRates{};
@@ -633,11 +684,16 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     hh.w = d.c1 * a.w + d.c2 * b.w + d.d1 * at.w;
     d.trial[i] = a;
   }
-  // Warm start extrapolated linearly from the last two steps.
-  Eigen::VectorXd zz = d.have_prev ? Eigen::VectorXd(2.0 * d.z - d.z_prev) : d.z;
+  // Warm start: the unknowns extrapolated from the last steps (quadratic through three).
+  Eigen::VectorXd zz = d.z;
+  if (d.history_steps >= 2) {
+    zz = 3.0 * d.z - 3.0 * d.z_prev + d.z_prev2;
+  } else if (d.history_steps == 1) {
+    zz = 2.0 * d.z - d.z_prev;
+  }
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) {
-    if (d.have_prev) {
+    if (d.history_steps > 0) {
       // Retry from the last solution without extrapolation.
       zz = d.z;
       for (int i = 0; i < d.slots(); ++i) d.trial[i] = d.cur[i];
@@ -664,9 +720,10 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     d.cur[i] = x;
     d.cur_t[i] = rt;
   }
+  d.z_prev2 = d.z_prev;
   d.z_prev = d.z;
   d.z = zz;
-  d.have_prev = true;
+  ++d.history_steps;
   d.grid_converged = d.grid;
   d.t += d.opt.dt_s;
   return sum;
