@@ -40,15 +40,18 @@ std::vector<double> released_trajectory(int n, double dt, double alpha, double s
   return x;
 }
 
+/// One grid for the whole ladder, fine enough for dt = 1e-5 (h kappa = 0.99 there).
+constexpr int kSteps = 128;
+
 TEST(RodDynamicsSlow, ReleasedCantileverDtLadder) {
-  const double duration = 0.2, sample_dt = 0.01;
+  const double duration = 0.05, sample_dt = 0.01;
   const int samples = static_cast<int>(std::lround(duration / sample_dt));
   const std::vector<double> dts = {1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5};
   std::vector<std::vector<double>> traj;
   for (const double dt : dts) {
     double wall = 0.0;
     bool ok = false;
-    traj.push_back(released_trajectory(40, dt, -0.2, sample_dt, samples, &wall, &ok));
+    traj.push_back(released_trajectory(kSteps, dt, -0.2, sample_dt, samples, &wall, &ok));
     std::printf("dt %8.1e  converged %d  wall %.2f s  tip x(T) %.9f\n", dt, ok, wall,
                 traj.back().back());
     ASSERT_TRUE(ok);
@@ -61,6 +64,11 @@ TEST(RodDynamicsSlow, ReleasedCantileverDtLadder) {
     err.push_back(e);
   }
   std::printf("%s", test_support::convergence_table(h, err).c_str());
+  // A sudden release excites bending modes up to hundreds of Hz, so the trajectory converges
+  // at about first order in dt (measured 0.8 ... 1.4 per level), not at the formula's second
+  // order; the gate brackets that first order and requires monotone convergence.
+  for (std::size_t i = 1; i < err.size(); ++i) EXPECT_LT(err[i], err[i - 1]);
+  test_support::ExpectOrderInBracket(h, err, 1.1, 0.5);
 }
 
 }  // namespace
