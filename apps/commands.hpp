@@ -29,4 +29,8 @@ void add_compare_command(CLI::App& app);
 /// `tcasim converge SCENARIO --order 1|2 --levels K [--coarsest N] [--out CSV]`: FE error table
 void add_converge_command(CLI::App& app);
 
+/// `tcasim simulate SCENARIO --duration-s T --dt-s DT [--alpha A] [--output-every K] --out CSV
+/// [--vtk-series DIR]`: rod dynamics, trajectory CSV
+void add_simulate_command(CLI::App& app);
+
 }  // namespace tcasim::app

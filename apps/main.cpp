@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   tcasim::app::add_grasp_command(app);
   tcasim::app::add_compare_command(app);
   tcasim::app::add_converge_command(app);
+  tcasim::app::add_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -1,0 +1,201 @@
+// `tcasim simulate`: rod dynamics of one scenario over time (docs/scenario-format.md
+// "Trajectory file"), by the shooting method (cosserat/dynamics.hpp).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/cli_util.hpp"
+#include "apps/commands.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "cosserat/dynamics.hpp"
+#include "rod/loads.hpp"
+#include "rod/result.hpp"
+#include "rod/scenario.hpp"
+#include "rod/vtk.hpp"
+
+namespace tcasim::app {
+
+namespace {
+
+/// Exit code of a simulation whose time step failed (the rows before it are kept).
+constexpr int kExitStepFailed = 4;
+/// Time steps of one run: 1e8 steps are hours; beyond that the run only burns time.
+constexpr long long kMaxTimeSteps = 100000000;
+
+/// One .vtp of the current state and its entry in the .pvd collection.
+void write_vtk_frame(const rod::RodModel& model, const cosserat::RodDynamics& dyn,
+                     const std::string& dir, int frame, std::string& pvd_entries) {
+  rod::Result r;
+  r.scenario = model.name;
+  r.method = "cosserat";
+  r.converged = true;
+  const auto& grid = dyn.grid_states();
+  const int n = static_cast<int>(grid.size()) - 1;
+  for (int i = 0; i <= n; ++i) {
+    r.centerline_s_m.push_back(model.length_m * i / n);
+    r.centerline_p_W_m.push_back(grid[i].head<3>());
+    r.centerline_R_WB.push_back(Eigen::Map<const Eigen::Matrix3d>(grid[i].data() + 3));
+  }
+  r.tip_position_W_m = dyn.tip_position_W_m();
+  r.tip_R_WB = dyn.tip_rotation_W();
+  const std::string name = fmt::format("frame_{:06d}.vtp", frame);
+  rod::write_vtp(model, r, (std::filesystem::path(dir) / name).string());
+  pvd_entries += fmt::format(
+      "    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", dyn.time_s(), name);
+}
+
+void write_pvd(const std::string& dir, const std::string& entries) {
+  const std::string path = (std::filesystem::path(dir) / "trajectory.pvd").string();
+  std::ofstream f(path);
+  f << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    << "  <Collection>\n"
+    << entries << "  </Collection>\n</VTKFile>\n";
+  if (!f) throw InputError("--vtk-series", path, "could not be written");
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app) {
+  struct Flags {
+    std::string scenario, out, vtk_dir, method = "cosserat";
+    double duration_s = 0.0, dt_s = 0.0, alpha = -0.2, viscosity = 0.0, tip_mass = 0.0;
+    int output_every = 1, steps = 0, max_iterations = 30;
+    bool release_tip_load = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  auto* cmd = app.add_subcommand(
+      "simulate", "Rod dynamics from the static state at t = 0: a trajectory CSV over time");
+  cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
+  cmd->add_option("--duration-s", flags->duration_s, "simulated time T [s] (> 0)")->required();
+  cmd->add_option("--dt-s", flags->dt_s, "time step [s] (> 0)")->required();
+  cmd->add_option("--method", flags->method, "solver: cosserat (shooting; the only one so far)")
+      ->check(CLI::IsMember({"cosserat", "fe"}));
+  cmd->add_option("--alpha", flags->alpha,
+                  "BDF-alpha parameter in [-0.5, 0] (default -0.2; 0: BDF2, -0.5: trapezoidal)");
+  cmd->add_option("--steps", flags->steps,
+                  "RK4 steps along s (default: enough for the time step, at least 20)");
+  cmd->add_option("--output-every", flags->output_every, "write every K-th time step (default 1)");
+  cmd->add_option("--viscosity-Pa-s", flags->viscosity,
+                  "Kelvin-Voigt viscosity of the body [Pa s] (default 0)");
+  cmd->add_option("--tip-mass-kg", flags->tip_mass, "point mass at the tip [kg] (default 0)");
+  cmd->add_option("--max-iterations", flags->max_iterations,
+                  "Newton iterations per time step (default 30)");
+  cmd->add_flag("--release-tip-load", flags->release_tip_load,
+                "the scenario's tip load acts at t = 0 only (released at t = 0+: a released "
+                "cantilever)");
+  cmd->add_option("--out", flags->out, "trajectory CSV file")->required();
+  cmd->add_option("--vtk-series", flags->vtk_dir,
+                  "also write DIR/trajectory.pvd with one .vtp per output time (ParaView)");
+  cmd->callback([flags] {
+    const Flags& f = *flags;
+    require(f.method == "cosserat", "--method", f.method,
+            "must be cosserat: the FE dynamics is not available yet");
+    require(std::isfinite(f.duration_s) && f.duration_s > 0.0, "--duration-s", f.duration_s,
+            "must be > 0");
+    require(std::isfinite(f.dt_s) && f.dt_s > 0.0, "--dt-s", f.dt_s, "must be > 0");
+    const double n_steps_real = std::round(f.duration_s / f.dt_s);
+    require(n_steps_real >= 1 && n_steps_real <= kMaxTimeSteps, "--duration-s", f.duration_s,
+            fmt::format("must be between 1 and {} time steps of --dt-s", kMaxTimeSteps));
+    require(f.alpha >= -0.5 && f.alpha <= 0.0, "--alpha", f.alpha, "must be in [-0.5, 0]");
+    require_count(f.output_every, "--output-every", 1, kMaxTimeSteps);
+    if (f.steps != 0) require_count(f.steps, "--steps", 1, kMaxSteps);
+    require(std::isfinite(f.viscosity) && f.viscosity >= 0.0, "--viscosity-Pa-s", f.viscosity,
+            "must be >= 0");
+    require(std::isfinite(f.tip_mass) && f.tip_mass >= 0.0, "--tip-mass-kg", f.tip_mass,
+            "must be >= 0");
+    const rod::RodModel model = rod::read_scenario(f.scenario);
+    cosserat::DynamicsOptions o;
+    o.dt_s = f.dt_s;
+    o.alpha = f.alpha;
+    o.steps = f.steps != 0 ? f.steps : cosserat::recommended_steps(model, o);
+    o.viscosity_Pa_s = f.viscosity;
+    o.tip_mass_kg = f.tip_mass;
+    require_count(f.max_iterations, "--max-iterations", 1, 1000);
+    o.max_iterations = f.max_iterations;
+    std::unique_ptr<cosserat::RodDynamics> dyn_ptr;
+    try {
+      dyn_ptr = std::make_unique<cosserat::RodDynamics>(model, o);
+    } catch (const InputError& e) {
+      if (e.key() == "dynamics.steps") throw InputError("--steps", e.value(), e.rule());
+      throw;
+    }
+    cosserat::RodDynamics& dyn = *dyn_ptr;
+    // The loads over time: the scenario's own (time profiles arrive with the thermal model).
+    const bool release = f.release_tip_load;
+    const cosserat::LoadsAt loads_at = [&model, release](double t) {
+      rod::Loads l = rod::Loads::from_model(model);
+      if (release && t > 0.0) {
+        l.tip_force_W_N.setZero();
+        l.tip_moment_W_Nm.setZero();
+      }
+      return l;
+    };
+
+    Output out(f.out);
+    std::ostream& os = out.stream();
+    os << "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J";
+    for (const auto& a : model.actuators) {
+      os << ',' << a.name << "_tension_N," << a.name << "_elongation_m," << a.name
+         << "_temperature_degC";
+    }
+    os << '\n';
+    auto write_row = [&] {
+      const Eigen::Vector3d p = dyn.tip_position_W_m();
+      os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", dyn.time_s(), p.x(), p.y(), p.z(),
+                        dyn.kinetic_energy_J());
+      const std::vector<double> t = dyn.tensions_N(), e = dyn.elongations_m();
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        os << fmt::format(",{:.12e},{:.12e},nan", t[i], e[i]);  // tension drives: no temperature
+      }
+      os << '\n';
+    };
+    std::string pvd;
+    int frame = 0;
+    if (!f.vtk_dir.empty()) std::filesystem::create_directories(f.vtk_dir);
+
+    const cosserat::DynamicsSummary init = dyn.initialize(loads_at(0.0));
+    if (!init.converged()) {
+      os << "# static initial state did not converge (" << cosserat::to_string(init.status)
+         << "): " << init.message << '\n';
+      out.commit();
+      fmt::print(stderr, "tcasim simulate: the static state at t = 0 did not converge: {}\n",
+                 init.message);
+      throw CLI::RuntimeError(kExitStepFailed);
+    }
+    write_row();
+    if (!f.vtk_dir.empty()) write_vtk_frame(model, dyn, f.vtk_dir, frame++, pvd);
+    const long long n_steps = static_cast<long long>(n_steps_real);
+    ProgressReporter progress(stderr, "tcasim simulate", static_cast<std::size_t>(n_steps),
+                              "steps");
+    for (long long k = 1; k <= n_steps; ++k) {
+      const double t_new = k * f.dt_s;
+      const cosserat::DynamicsSummary s = dyn.step(loads_at(t_new));
+      if (!s.converged()) {
+        os << fmt::format("# time step to t = {:.9g} s failed ({}): {}\n", t_new,
+                          cosserat::to_string(s.status), s.message);
+        out.commit();
+        if (!f.vtk_dir.empty()) write_pvd(f.vtk_dir, pvd);
+        fmt::print(stderr, "tcasim simulate: time step to t = {:.9g} s failed: {}\n", t_new,
+                   s.message);
+        throw CLI::RuntimeError(kExitStepFailed);
+      }
+      if (k % f.output_every == 0 || k == n_steps) {
+        write_row();
+        if (!f.vtk_dir.empty()) write_vtk_frame(model, dyn, f.vtk_dir, frame++, pvd);
+      }
+      if (n_steps >= 1000) progress.update(static_cast<std::size_t>(k));
+    }
+    out.commit();
+    if (!f.vtk_dir.empty()) write_pvd(f.vtk_dir, pvd);
+  });
+}
+
+}  // namespace tcasim::app

@@ -1,0 +1,127 @@
+#pragma once
+/// Cosserat rod dynamics by shooting: the rod PDE semi-discretized in time by the implicit
+/// BDF-alpha formula ([Till2019]), each time step's boundary-value problem in s solved by
+/// multiple shooting with fixed-step RK4 on a fixed grid (docs/conventions.md "Rod dynamics
+/// (shooting method)").
+///
+/// State per point (dimension 24 + n_actuators), body-frame quantities in B, SI:
+///   y = ( p_W [0,3), R_WB [3,12) column-major, N_B [12,15), M_B [15,18), q_B [18,21),
+///         w_B [21,24), delta_i [24, 24 + n) )
+/// with N, M the internal force and moment of the section including the strings' tensions
+/// (N = n + sum c_i T_i qh_i, M = m + sum c_i T_i r_i x qh_i), q and w the linear and
+/// angular velocity, delta_i the string elongations.
+/// Multiple shooting: M intervals of S RK4 steps each (N = M S steps of h = L / N); unknowns
+/// (N_B, M_B) at s = 0 and the whole state at the start of every other interval; residual:
+/// continuity at each interior node and the tip balance. Newton (chord iterations with the
+/// last factorization; a fresh Jacobian when they contract slowly) with the exact Jacobian
+/// (forward sensitivities of each interval), solved by Eigen's SparseLU.
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rod/loads.hpp"
+#include "rod/model.hpp"
+
+namespace tcasim::cosserat {
+
+/// Options of the rod dynamics (validated by RodDynamics' constructor: InputError naming the
+/// field).
+struct DynamicsOptions {
+  int steps = 40;     ///< RK4 steps along s (N; the grid has N + 1 points), >= 1
+  int intervals = 0;  ///< shooting intervals M (must divide steps); 0: automatic
+  /// Automatic intervals: the fewest M dividing `steps` whose interval length l satisfies
+  /// l kappa <= max_interval_growth, kappa the fastest spatial growth rate of the step's
+  /// linearized problem (docs/conventions.md): each interval amplifies errors by <= e^this.
+  double max_interval_growth = 2.0;
+  double dt_s = 2e-3;   ///< time step [s], > 0
+  double alpha = -0.2;  ///< BDF-alpha parameter in [-0.5, 0] (0: BDF2, -0.5: trapezoidal)
+  /// Converged when the scaled residual (docs/conventions.md) satisfies ||r||_inf <= this.
+  double tolerance = 1e-10;
+  int max_iterations = 30;  ///< Newton (chord) iterations per time step
+  /// Kelvin-Voigt viscosity eta [Pa s] (the scenario's body.material.viscosity_Pa_s).
+  double viscosity_Pa_s = 0.0;
+  /// Point mass at the tip [kg] (the scenario's tip_mass_kg).
+  double tip_mass_kg = 0.0;
+};
+
+/// The loads at time t [s] (a simulation's drive: constant, or time profiles).
+using LoadsAt = std::function<rod::Loads(double t_s)>;
+
+/// RK4 steps h along s must satisfy h kappa <= kMaxStepGrowth (kappa: spatial_growth_rate):
+/// coarser grids misrepresent the step's fast spatial modes and the time stepping goes
+/// unstable (measured on the steel cantilever: h kappa = 1.34 agrees with a fine grid to
+/// 1e-7 m, 2.0 diverges).
+inline constexpr double kMaxStepGrowth = 1.5;
+
+/// Fastest spatial growth rate kappa [1/m] of one time step's linearized problem
+/// (docs/conventions.md): max of bending (rho A / EI)^(1/4) sqrt(c0), axial and shear
+/// sqrt(rho A / K_se) c0 and torsion sqrt(rho J_p / GJ) c0, c0 the BDF-alpha coefficient.
+double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& options);
+
+/// RK4 steps for `options.dt_s`: max(20, ceil(L kappa)) (h kappa <= 1), even.
+int recommended_steps(const rod::RodModel& model, const DynamicsOptions& options);
+
+/// Outcome of the static initialization or of one time step.
+struct DynamicsSummary {
+  enum class Status {
+    kConverged,         ///< ||r_scaled||_inf <= DynamicsOptions::tolerance
+    kMaxIterations,     ///< max_iterations iterations with ||r_scaled||_inf > tolerance
+    kNotConverging,     ///< a fresh Jacobian and 6 halvings of its step gave no decrease
+    kSingularJacobian,  ///< SparseLU failed to factorize the Jacobian
+    kNonFinite,         ///< the state became non-finite (or a section's constitutive
+                        ///< solve failed) at the starting point
+    kNotRun,
+  };
+  Status status = Status::kNotRun;
+  int iterations = 0;  ///< Newton iterations
+  int jacobians = 0;   ///< Jacobians computed and factorized
+  double residual = 0.0;
+  std::string message;  ///< why, when not converged
+  bool converged() const { return status == Status::kConverged; }
+};
+
+const char* to_string(DynamicsSummary::Status s);
+
+/// Rod dynamics of one model: static initialization at t = 0, then fixed time steps.
+/// Holds a reference to the model (it must outlive the solver). Tension drives only:
+/// a TCA drive is refused (DomainError) until the thermal coupling is added.
+class RodDynamics {
+ public:
+  RodDynamics(const rod::RodModel& model, const DynamicsOptions& options);
+  ~RodDynamics();
+  RodDynamics(const RodDynamics&) = delete;
+  RodDynamics& operator=(const RodDynamics&) = delete;
+
+  /// Static equilibrium under `loads` (at rest, with this solver's discretization), started
+  /// from the static shooting solver's solution; time is set to 0.
+  DynamicsSummary initialize(const rod::Loads& loads);
+  /// Advances by dt_s under `loads` (the loads at the new time t + dt).
+  DynamicsSummary step(const rod::Loads& loads);
+
+  double time_s() const;
+  int intervals() const;        ///< M
+  int state_dimension() const;  ///< 24 + actuators
+  /// States at the N + 1 grid points s_i = i L / N of the last converged solve.
+  const std::vector<Eigen::VectorXd>& grid_states() const;
+  Eigen::Vector3d tip_position_W_m() const;
+  Eigen::Matrix3d tip_rotation_W() const;
+  /// Kinetic energy 1/2 int (rho A |q|^2 + w . rho J w) ds + 1/2 m_tip |q(L)|^2 [J].
+  double kinetic_energy_J() const;
+  /// Potential energy of the current loads taken as constant [J]: strain energy
+  /// 1/2 int (e . K_se e + (omega - omega*) . K_bt (omega - omega*)) ds, minus the work
+  /// potential of gravity and of the tip force, plus c_i T_i delta_i of the strings (tip
+  /// moments are not included: they are not conservative in 3-D).
+  double potential_energy_J() const;
+  /// Per actuator: tension of one string [N] and elongation [m].
+  std::vector<double> tensions_N() const;
+  std::vector<double> elongations_m() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tcasim::cosserat
