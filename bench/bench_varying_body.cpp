@@ -1,7 +1,7 @@
 // Cost of a body that varies along s (docs/scenario-format.md "Profiles along the body")
 // against a uniform one at the same accuracy (Google Benchmark), shooting solver, cold solves:
 //  - uniform: the tapered tentacle's mean diameter (15 mm) along its whole length, straight;
-//  - tapered: validation/scenarios/tapered-tentacle.json's body (diameter 20 -> 10 mm, a jump
+//  - tapered: examples/scenarios/tapered-tentacle.json's body (diameter 20 -> 10 mm, a jump
 //    of the reference curvature at L/2), the same tendons and gravity.
 // Before the benchmarks, main() prints for each body the RK4 steps at which the tip error
 // against a tight reference (RK4, 2048 steps) falls below kTipTolerance, and that error; the
