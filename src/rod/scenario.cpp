@@ -92,15 +92,18 @@ tca::Material parse_material(const nlohmann::json& j, const std::string& key) {
   return m;
 }
 
-tca::Material load_material(const std::string& name, const std::string& key) {
+std::filesystem::path scenario_detail::shipped_data_file(const std::string& folder,
+                                                         const std::string& what,
+                                                         const std::string& name,
+                                                         const std::string& key) {
   const bool safe =
       !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
       });
   require(safe, key, quote(name),
-          "must be a shipped material name (letters, digits, '.', '_', '-'), not a path");
+          "must be a shipped " + what + " name (letters, digits, '.', '_', '-'), not a path");
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(data_directory()) / "materials";
+  const fs::path dir = fs::path(data_directory()) / folder;
   const fs::path file = dir / (name + ".json");
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) {
@@ -111,10 +114,15 @@ tca::Material load_material(const std::string& name, const std::string& key) {
     std::sort(available.begin(), available.end());
     throw InputError(
         key, quote(name),
-        fmt::format("names no shipped material: {} does not exist (available: {})", file.string(),
+        fmt::format("names no shipped {}: {} does not exist (available: {})", what, file.string(),
                     available.empty() ? std::string("none")
                                       : fmt::format("{}", fmt::join(available, ", "))));
   }
+  return file;
+}
+
+tca::Material load_material(const std::string& name, const std::string& key) {
+  const std::filesystem::path file = shipped_data_file("materials", "material", name, key);
   const json doc = read_json_file(file.string(), key);
   tca::Material m = parse_material(doc, file.string() + ":");
   m.name = name;

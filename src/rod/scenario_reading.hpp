@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -257,5 +258,11 @@ std::map<std::string, tca::ThermalParameters> parse_tca_thermals(
 /// drive without one (runaway) or with one outside the material's valid range.
 ElectricSegment parse_electric(const json& j, const std::string& path, const std::string& tca_id,
                                double fraction, const RodModel& model, double& steady_K);
+
+/// The file <data directory>/<folder>/<name>.json of a shipped data set (`what`: "material",
+/// "thermal data set"), for load_material and the thermal data sets: InputError at `key` for
+/// a name that is a path or names no file (the message lists the available names).
+std::filesystem::path shipped_data_file(const std::string& folder, const std::string& what,
+                                        const std::string& name, const std::string& key);
 
 }  // namespace tcasim::rod::scenario_detail

@@ -39,30 +39,7 @@ double sourced_value(const Obj& o, const std::string& k) {
 }
 
 ThermalPerLength load_thermal_data(const std::string& name, const std::string& key) {
-  const bool safe =
-      !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
-      });
-  require(safe, key, quote(name),
-          "must be a shipped thermal data set name (letters, digits, '.', '_', '-'), not a path");
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::path(data_directory()) / "thermal";
-  const fs::path file = dir / (name + ".json");
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
-    std::vector<std::string> available;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-      if (entry.path().extension() == ".json") available.push_back(entry.path().stem().string());
-    }
-    std::sort(available.begin(), available.end());
-    throw InputError(
-        key, quote(name),
-        fmt::format("names no shipped thermal data set: {} does not exist "
-                    "(available: {})",
-                    file.string(),
-                    available.empty() ? std::string("none")
-                                      : fmt::format("{}", fmt::join(available, ", "))));
-  }
+  const std::filesystem::path file = shipped_data_file("thermal", "thermal data set", name, key);
   const json doc = read_json_file(file.string(), key);
   const std::string prefix = file.string() + ":";
   (void)peek_choice(doc, prefix, "schema", {kThermalSchema});
