@@ -34,18 +34,32 @@ double parse_number(const std::string& s, const std::string& flag, const std::st
 
 }  // namespace
 
-std::vector<double> parse_range(const std::string& text, const std::string& flag) {
-  std::vector<std::string> parts;
+std::vector<std::string> split_list(const std::string& text, char delimiter,
+                                    const std::string& flag, const std::string& rule) {
+  std::vector<std::string> items;
   std::size_t start = 0;
   while (true) {
-    const std::size_t colon = text.find(':', start);
-    parts.push_back(text.substr(start, colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
+    const std::size_t end = text.find(delimiter, start);
+    items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
   }
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (!items[k].empty()) continue;
+    if (items.size() == 1) throw InputError(flag, "\"\"", rule + ", not an empty text");
+    const char* where = k == 0 ? "a leading" : k + 1 == items.size() ? "a trailing" : "a doubled";
+    throw InputError(flag, text,
+                     fmt::format("{}: item {} of {} is empty ({} '{}')", rule, k + 1, items.size(),
+                                 where, delimiter));
+  }
+  return items;
+}
+
+std::vector<double> parse_range(const std::string& text, const std::string& flag) {
+  const std::string rule = "must be a number or a range START:STOP:STEP";
+  const std::vector<std::string> parts = split_list(text, ':', flag, rule);
   if (parts.size() == 1) return {parse_number(parts[0], flag, text)};
-  if (parts.size() != 3)
-    throw InputError(flag, text, "must be a number or a range START:STOP:STEP");
+  if (parts.size() != 3) throw InputError(flag, text, rule);
   const double a = parse_number(parts[0], flag, text);
   const double b = parse_number(parts[1], flag, text);
   const double step = parse_number(parts[2], flag, text);
@@ -53,15 +67,12 @@ std::vector<double> parse_range(const std::string& text, const std::string& flag
 }
 
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) {
-  Eigen::Vector3d v;
-  std::size_t pos = 0;
-  int k = 0;
   const std::string rule = "must be three comma-separated finite numbers X,Y,Z";
-  while (true) {
-    const std::size_t comma = text.find(',', pos);
-    const std::string item =
-        text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    require(k < 3, flag, text, rule);
+  const std::vector<std::string> items = split_list(text, ',', flag, rule);
+  require(items.size() == 3, flag, text, rule);
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) {
+    const std::string& item = items[k];
     std::size_t used = 0;
     double value = 0.0;
     try {
@@ -72,11 +83,8 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) 
     require(used > 0 && item.find_first_not_of(" \t", used) == std::string::npos &&
                 std::isfinite(value),
             flag, text, rule);
-    v[k++] = value;
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
+    v[k] = value;
   }
-  require(k == 3, flag, text, rule);
   return v;
 }
 
@@ -89,11 +97,8 @@ std::vector<int> actuator_indices(const rod::RodModel& model, const std::string&
   }
   std::string all;
   for (const auto& a : model.actuators) all += (all.empty() ? "" : ", ") + a.name;
-  std::size_t pos = 0;
-  while (pos <= names.size()) {
-    const std::size_t comma = names.find(',', pos);
-    const std::string name =
-        names.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+  for (const std::string& name :
+       split_list(names, ',', flag, "must be comma-separated actuator names")) {
     int found = -1;
     for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
       if (model.actuators[i].name == name) found = i;
@@ -103,8 +108,6 @@ std::vector<int> actuator_indices(const rod::RodModel& model, const std::string&
     require(std::find(out.begin(), out.end(), found) == out.end(), flag, names,
             "names actuator '" + name + "' twice");
     out.push_back(found);
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
   }
   return out;
 }

@@ -35,6 +35,14 @@ inline constexpr long long kMaxShards = 1000000;
 /// Requires lo <= value <= hi for the count given by `flag` (`--steps = 1e9 must be ...`).
 void require_count(long long value, const std::string& flag, long long lo, long long hi);
 
+/// Splits `text` at each `delimiter` into its items, refusing an empty item: a leading,
+/// doubled or trailing delimiter ("25:", "1,2,", ",1", "a,,b") or an empty text is an
+/// InputError naming `flag` and the value, with `rule` (the list's format) and which item is
+/// empty. (CLI11's own list splitting silently drops a trailing empty item, so the list
+/// options take a string and split it here.)
+std::vector<std::string> split_list(const std::string& text, char delimiter,
+                                    const std::string& flag, const std::string& rule);
+
 /// Parses "A:B:S" (start, stop, step; the inclusive grid of common/grid.hpp) or a single
 /// value "A". `flag` names the option in error messages.
 std::vector<double> parse_range(const std::string& text, const std::string& flag);
@@ -51,7 +59,7 @@ Shard parse_shard(const std::string& text, const std::string& flag);
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag);
 
 /// Comma-separated actuator names -> model indices (all actuators for an empty text);
-/// InputError naming `flag` for an unknown or repeated name.
+/// InputError naming `flag` for an unknown, repeated or empty name ("tca0,").
 std::vector<int> actuator_indices(const rod::RodModel& model, const std::string& names,
                                   const std::string& flag);
 

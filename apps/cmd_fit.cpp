@@ -59,10 +59,15 @@ json material_json(const tca::Material& m, const std::string& source) {
 
 void run_fit(const FitOptions& o) {
   require_count(o.max_evaluations, "--max-evaluations", 1, kMaxEvaluations);
+  std::vector<tca::FitParameter> fit;
+  for (const std::string& list : o.fit) {
+    for (const std::string& name :
+         split_list(list, ',', "--fit", "must be comma-separated parameter names")) {
+      fit.push_back(tca::parse_fit_parameter(name, "--fit"));
+    }
+  }
   const auto tca = select_tca(o.tca_file, o.id, o.material, o.f12_form);
   const auto data = tca::read_measurements_csv(o.data);
-  std::vector<tca::FitParameter> fit;
-  for (const std::string& name : o.fit) fit.push_back(tca::parse_fit_parameter(name, "--fit"));
   tca::CalibrationOptions options;
   options.max_function_evaluations = o.max_evaluations;
   tca::Material initial = tca->material();
@@ -135,8 +140,7 @@ void add_fit_command(CLI::App& app) {
                   "Parameters to fit, comma separated: youngs_modulus, youngs_modulus_slope "
                   "(at the reference temperature), shear_modulus, shear_modulus_slope, expansion "
                   "(rho, or the scale of a ratio polynomial)")
-      ->required()
-      ->delimiter(',');
+      ->required();  // split by split_list (CLI11's delimiter drops a trailing empty item)
   cmd->add_option("--material", opts->material,
                   "Start from this shipped material instead of the TCA's own");
   cmd->add_option("--f12-form", opts->f12_form, "Eq. (4) factor: paper (8) or castigliano (16)")
