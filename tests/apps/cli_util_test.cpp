@@ -1,36 +1,30 @@
 // Tests of the command-line helpers of the `tcasim` program (apps/cli_util.hpp).
 #include "apps/cli_util.hpp"
 
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
 #include "common/error.hpp"
+#include "support/input_error.hpp"
 
 namespace tcasim::app {
 namespace {
 
-template <class F>
-void expect_input_error(F&& f, const std::string& key) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError for " << key;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_FALSE(e.rule().empty());
-  }
-}
+using test_support::expect_input_error;
+using test_support::input_error_rule;
 
-/// The rule of the InputError that `f` throws ("(accepted)" when it throws none).
-template <class F>
-std::string rule_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.rule();
-  }
-  return "(accepted)";
+// The shared expectation (tests/support/input_error.hpp) fails on every wrong outcome.
+TEST(TestSupportInputError, FailsWithoutAnErrorOrOnAnotherKeyOrRule) {
+  EXPECT_NONFATAL_FAILURE(expect_input_error([] {}, "k"), "no InputError for k");
+  EXPECT_NONFATAL_FAILURE(expect_input_error([] { throw InputError("a", "1", "r"); }, "b"), "b");
+  EXPECT_NONFATAL_FAILURE(
+      expect_input_error([] { throw InputError("a", "1", "must be > 0"); }, "a", "integer"),
+      "rule without 'integer'");
+  expect_input_error([] { throw InputError("a", "1", "must be > 0"); }, "a", "> 0");
+  EXPECT_EQ(input_error_rule([] {}), "(accepted)");
 }
 
 TEST(CliSplitList, SplitsAtTheDelimiterAndRefusesEveryEmptyItem) {
@@ -49,9 +43,9 @@ TEST(CliSplitList, SplitsAtTheDelimiterAndRefusesEveryEmptyItem) {
     EXPECT_EQ(e.value(), "1,2,");
     EXPECT_EQ(e.rule(), "must be a list of orders: item 3 of 3 is empty (a trailing ',')");
   }
-  EXPECT_EQ(rule_of([] { split_list(",1", ',', "--x", "must be a list"); }),
+  EXPECT_EQ(input_error_rule([] { split_list(",1", ',', "--x", "must be a list"); }),
             "must be a list: item 1 of 2 is empty (a leading ',')");
-  EXPECT_EQ(rule_of([] { split_list("1::2", ':', "--x", "must be a list"); }),
+  EXPECT_EQ(input_error_rule([] { split_list("1::2", ':', "--x", "must be a list"); }),
             "must be a list: item 2 of 3 is empty (a doubled ':')");
 }
 
@@ -62,7 +56,7 @@ TEST(CliRange, ParsesOneValueOrAnInclusiveRangeAndRefusesEmptyParts) {
   for (const char* bad : {"25:", "25:150:", ":150:1", "25::1", "25:150:0.125:", "25:150", "x"}) {
     expect_input_error([&] { parse_range(bad, "--temperatures-degC"); }, "--temperatures-degC");
   }
-  EXPECT_EQ(rule_of([] { parse_range("25:150:", "--temperatures-degC"); }),
+  EXPECT_EQ(input_error_rule([] { parse_range("25:150:", "--temperatures-degC"); }),
             "must be a number or a range START:STOP:STEP: item 3 of 3 is empty (a trailing ':')");
 }
 
@@ -85,7 +79,7 @@ TEST(CliShard, ParsesIOfNAndNamesEachBrokenRule) {
     expect_input_error([&] { parse_shard(bad, "--shard"); }, "--shard");
   }
   const auto shard_rule = [](const std::string& text) {
-    return rule_of([&] { parse_shard(text, "--shard"); });
+    return input_error_rule([&] { parse_shard(text, "--shard"); });
   };
   EXPECT_NE(shard_rule("4/4").find("I < N"), std::string::npos) << shard_rule("4/4");
   EXPECT_NE(shard_rule("0/0").find("shard count N in [1,"), std::string::npos) << shard_rule("0/0");
@@ -99,7 +93,7 @@ TEST(CliActuatorIndices, MapsNamesToIndicesAndRejectsUnknownOrRepeatedNames) {
   m.actuators[1].name = "tca1";
   expect_input_error([&] { actuator_indices(m, "tca0,nope", "--actuators"); }, "--actuators");
   expect_input_error([&] { actuator_indices(m, "tca0,tca0", "--actuators"); }, "--actuators");
-  EXPECT_EQ(rule_of([&] { actuator_indices(m, "tca0,", "--actuators"); }),
+  EXPECT_EQ(input_error_rule([&] { actuator_indices(m, "tca0,", "--actuators"); }),
             "must be comma-separated actuator names: item 2 of 2 is empty (a trailing ',')");
   EXPECT_EQ(actuator_indices(m, "tca1", "--actuators"), std::vector<int>{1});
   EXPECT_EQ(actuator_indices(m, "tca1,tca0", "--actuators"), (std::vector<int>{1, 0}));

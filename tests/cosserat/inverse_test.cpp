@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "cosserat/models.hpp"
+#include "support/input_error.hpp"
 
 namespace tcasim::cosserat {
 namespace {
@@ -351,17 +352,7 @@ TEST(Grasp, UnreachableForceIsReportedNotConverged) {
   EXPECT_NE(r.message.find("at the maximum temperature"), std::string::npos) << r.message;
 }
 
-/// Expects an InputError whose key is `key`.
-template <class F>
-void expect_input_error(F&& f, const std::string& key) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError for " << key;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_FALSE(e.rule().empty());
-  }
-}
+using test_support::expect_input_error;
 
 TEST(InverseRejections, BadInputsNameTheFlagValueAndRule) {
   rod::RodModel free = gripper_finger();

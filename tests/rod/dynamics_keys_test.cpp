@@ -11,6 +11,7 @@
 #include "common/units.hpp"
 #include "rod/loads.hpp"
 #include "rod/scenario.hpp"
+#include "support/input_error.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -50,13 +51,7 @@ json base() {
 }
 
 void expect_rejected(const json& doc, const std::string& key, const std::string& rule_part) {
-  try {
-    (void)parse_scenario(doc);
-    FAIL() << "expected InputError at " << key;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_NE(e.rule().find(rule_part), std::string::npos) << e.what();
-  }
+  test_support::expect_input_error([&] { (void)parse_scenario(doc); }, key, rule_part);
 }
 
 TEST(DynamicsKeys, ProfilesAreEvaluatedAtZeroForStaticsAndAtAnyTimeByAtTime) {
