@@ -6,7 +6,9 @@
 # tcasim::tcasim links them all. Layout:
 #   <prefix>/include/tcasim/...            headers (as under src/: "rod/scenario.hpp");
 #                                          the umbrella header is <tcasim/tcasim.hpp>
-#   <prefix>/lib/libtcasim_*.a             the libraries
+#   <prefix>/lib/libtcasim_*.a             the libraries (.so with -DBUILD_SHARED_LIBS=ON; the
+#                                          installed ones and the program find each other
+#                                          through a relative RPATH, $ORIGIN)
 #   <prefix>/lib/cmake/tcasim/             tcasimConfig.cmake, version file, targets
 #   <prefix>/share/tcasim/materials/       shipped material laws (common/data_dir.hpp)
 #   <prefix>/share/tcasim/scenarios/       shipped scenarios
@@ -21,10 +23,13 @@ add_library(tcasim_tcasim INTERFACE)
 add_library(tcasim::tcasim ALIAS tcasim_tcasim)
 set_target_properties(tcasim_tcasim PROPERTIES EXPORT_NAME tcasim)
 
+# Shared libraries (BUILD_SHARED_LIBS) installed: each finds the others in its own folder and
+# the program finds them in the library folder, wherever the prefix is moved.
+file(RELATIVE_PATH _tcasim_bin_to_lib "${CMAKE_INSTALL_FULL_BINDIR}" "${CMAKE_INSTALL_FULL_LIBDIR}")
 set(_tcasim_targets tcasim_tcasim)
 foreach(component IN LISTS TCASIM_COMPONENTS)
   set(target tcasim_${component})
-  set_target_properties(${target} PROPERTIES EXPORT_NAME ${component})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${component} INSTALL_RPATH "$ORIGIN")
   target_compile_features(${target} PUBLIC cxx_std_17)
   target_link_libraries(tcasim_tcasim INTERFACE tcasim::${component})
   list(APPEND _tcasim_targets ${target})
@@ -54,8 +59,10 @@ install(FILES ${PROJECT_BINARY_DIR}/tcasimConfig.cmake ${PROJECT_BINARY_DIR}/tca
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${TCASIM_INSTALL_DATADIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/validation/scenarios/ DESTINATION ${TCASIM_INSTALL_DATADIR}/scenarios
         COMPONENT runtime)
+set_target_properties(tcasim PROPERTIES INSTALL_RPATH "$ORIGIN/${_tcasim_bin_to_lib}")
 install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 unset(_tcasim_targets)
+unset(_tcasim_bin_to_lib)
 
 # The install as a consumer sees it (label `package`: in the default test run, not in the
 # sanitizer run, whose instrumented libraries a plain consumer cannot link).
