@@ -14,9 +14,9 @@
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "cosserat/inverse.hpp"
-#include "cosserat/shooting.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "study/inverse_document.hpp"
 
 namespace tcasim::app {
 
@@ -44,8 +44,6 @@ auto with_flag_names(F&& f) {
     throw;
   }
 }
-
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 void write_json(const nlohmann::json& j, const std::string& path) {
   Output out(path);
@@ -89,57 +87,11 @@ void add_inverse_command(CLI::App& app) {
       throw InputError("--actuators", flags->actuators, "the scenario has no actuator to adjust");
     }
     o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
-    cosserat::ShootingSolver solver(model, cosserat::Options{});
-    cosserat::Actuation act = cosserat::Actuation::from_model(model);
-    // Start from rest: TCAs at ambient (their material's reference temperature).
-    for (int i : o.actuators) {
-      const rod::Actuator& a = model.actuators[i];
-      if (a.drive.type == rod::Drive::Type::kTca) {
-        act.set_temperature_K(i, a.drive.tca->material().reference_temperature_K);
-      }
-    }
-    cosserat::Solution sol;
-    const cosserat::InverseResult r = with_flag_names(
-        [&] { return cosserat::solve_inverse(solver, model, target, o, act, sol); });
-
-    nlohmann::json j;
-    j["schema"] = "tcasim.inverse/1";
-    j["scenario"] = model.name;
-    j["converged"] = r.converged();
-    j["status"] = cosserat::to_string(r.status);
-    j["message"] = r.message;
-    j["iterations"] = r.iterations;
-    j["forward_solves"] = r.forward_solves;
-    j["target_m"] = vec(target);
-    j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
-    j["distance_m"] = r.distance_m;
-    nlohmann::json acts = nlohmann::json::array();
-    for (std::size_t k = 0; k < r.actuators.size(); ++k) {
-      const rod::Actuator& a = model.actuators[r.actuators[k]];
-      nlohmann::json e{{"name", a.name}, {"at_bound", k < r.at_bound.size() && r.at_bound[k]}};
-      const double v = k < static_cast<std::size_t>(r.values.size())
-                           ? r.values[static_cast<Eigen::Index>(k)]
-                           : std::numeric_limits<double>::quiet_NaN();
-      if (a.drive.type == rod::Drive::Type::kTca) {
-        e["temperature_degC"] = units::K_to_degC(v);
-        // Coil contact of the solved state at the final temperatures.
-        const std::size_t i = static_cast<std::size_t>(r.actuators[k]);
-        if (i < sol.tensions_N.size()) {
-          rod::ActuatorResult c(a.name, sol.tensions_N[i], sol.elongations_m[i]);
-          rod::set_coil_contacts(a, act.actuators[i].segments, c);
-          e["coils_closed"] = c.coils_closed;
-          e["contact_force_N"] = c.contact_force_N;
-        }
-      } else {
-        e["tension_N"] = v;
-      }
-      acts.push_back(e);
-    }
-    j["actuators"] = acts;
-    write_json(j, flags->out);
-    if (!r.converged()) {
-      fmt::print(stderr, "tcasim inverse: not converged ({}): {}\n", cosserat::to_string(r.status),
-                 r.message);
+    const study::DocumentRun r =
+        with_flag_names([&] { return study::inverse_document(model, target, o); });
+    write_json(r.document, flags->out);
+    if (!r.converged) {
+      fmt::print(stderr, "tcasim inverse: not converged ({}): {}\n", r.status, r.message);
       throw CLI::RuntimeError(kExitNotConverged);
     }
   });
@@ -178,33 +130,11 @@ void add_grasp_command(CLI::App& app) {
                        "`tcasim grasp` needs a tip_constraint with a \"normal\" (the contact "
                        "direction from the finger toward the object)");
     }
-    cosserat::GraspOptions o;
-    o.mass_kg = units::g_to_kg(flags->mass_g);
-    o.friction = flags->friction;
-    o.fingers = flags->fingers;
-    o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
-    cosserat::Options so;
-    so.tolerance = 1e-12;  // the blocked force is checked to 1e-9 relative
-    const cosserat::GraspResult r =
-        with_flag_names([&] { return cosserat::solve_grasp(model, so, o); });
-
-    nlohmann::json j;
-    j["schema"] = "tcasim.grasp/1";
-    j["scenario"] = model.name;
-    j["converged"] = r.converged;
-    j["message"] = r.message;
-    j["mass_g"] = flags->mass_g;
-    j["friction"] = flags->friction;
-    j["fingers"] = flags->fingers;
-    j["temperature_degC"] = units::K_to_degC(r.temperature_K);
-    j["normal_force_N"] = r.required_force_N;
-    j["blocked_normal_force_N"] = r.blocked_normal_force_N;
-    j["root_temperature_degC"] = r.root_temperature_K
-                                     ? nlohmann::json(units::K_to_degC(*r.root_temperature_K))
-                                     : nlohmann::json();
-    j["iterations"] = r.iterations;
-    j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
-    write_json(j, flags->out);
+    const double max_t_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
+    const study::DocumentRun r = with_flag_names([&] {
+      return study::grasp_document(model, flags->mass_g, flags->friction, flags->fingers, max_t_K);
+    });
+    write_json(r.document, flags->out);
     if (!r.converged) {
       fmt::print(stderr, "tcasim grasp: not converged: {}\n", r.message);
       throw CLI::RuntimeError(kExitNotConverged);

@@ -1,6 +1,6 @@
-// tcasim.inverse, tcasim.grasp and tcasim.tca_curve: the documents of `tcasim inverse`,
-// `tcasim grasp` (apps/cmd_inverse.cpp) and the table of `tcasim tca` (apps/cmd_tca.cpp),
-// built by the same library calls.
+// tcasim.inverse, tcasim.grasp and tcasim.tca_curve: the documents of `tcasim inverse` and
+// `tcasim grasp` (built by study/inverse_document.hpp for both) and the table of `tcasim tca`
+// (apps/cmd_tca.cpp), built by the same library calls.
 #include "cosserat/inverse.hpp"
 
 #include <fmt/format.h>
@@ -20,20 +20,16 @@
 #include "bindings.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "cosserat/shooting.hpp"
 #include "json_convert.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "study/inverse_document.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
 
 namespace tcasim::python {
 
 namespace {
-
-using json = nlohmann::json;
-
-json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 /// max_temperature_degC -> K (NaN when absent: the material's maximum).
 double max_temperature_K(std::optional<double> t_degC) {
@@ -61,12 +57,11 @@ std::vector<int> actuator_list(const rod::RodModel& model, const py::object& nam
   }
 }
 
-py::object checked(const json& j, bool converged, bool check, const std::string& what,
-                   const std::string& status) {
-  py::object out = to_python(j);
-  if (check && !converged) {
-    throw_solver_error(fmt::format("tcasim.{}: not converged ({}): {}", what, status,
-                                   j.value("message", std::string())),
+/// The document as a dict; tcasim.SolverError carrying it when `check` and not converged.
+py::object checked(const study::DocumentRun& r, bool check, const std::string& what) {
+  py::object out = to_python(r.document);
+  if (check && !r.converged) {
+    throw_solver_error(fmt::format("tcasim.{}: not converged ({}): {}", what, r.status, r.message),
                        out);
   }
   return out;
@@ -127,59 +122,13 @@ void register_inverse(py::module_& m) {
           throw InputError("actuators", "(none)", "the scenario has no actuator to adjust");
         }
         o.max_temperature_K = max_temperature_K(max_temperature_degC);
-        json j;
-        bool converged = false;
-        std::string status;
+        study::DocumentRun r;
         {
           py::gil_scoped_release release;
           // As `tcasim inverse`: default shooting options, TCAs starting at ambient.
-          cosserat::ShootingSolver solver(model, cosserat::Options{});
-          cosserat::Actuation act = cosserat::Actuation::from_model(model);
-          for (int i : o.actuators) {
-            const rod::Actuator& a = model.actuators[i];
-            if (a.drive.type == rod::Drive::Type::kTca) {
-              act.set_temperature_K(i, a.drive.tca->material().reference_temperature_K);
-            }
-          }
-          cosserat::Solution sol;
-          const cosserat::InverseResult r =
-              cosserat::solve_inverse(solver, model, target_m, o, act, sol);
-          j["schema"] = "tcasim.inverse/1";
-          j["scenario"] = model.name;
-          j["converged"] = r.converged();
-          j["status"] = cosserat::to_string(r.status);
-          j["message"] = r.message;
-          j["iterations"] = r.iterations;
-          j["forward_solves"] = r.forward_solves;
-          j["target_m"] = vec(target_m);
-          j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
-          j["distance_m"] = r.distance_m;
-          json acts = json::array();
-          for (std::size_t k = 0; k < r.actuators.size(); ++k) {
-            const rod::Actuator& a = model.actuators[r.actuators[k]];
-            json e{{"name", a.name}, {"at_bound", k < r.at_bound.size() && r.at_bound[k]}};
-            const double v = k < static_cast<std::size_t>(r.values.size())
-                                 ? r.values[static_cast<Eigen::Index>(k)]
-                                 : std::numeric_limits<double>::quiet_NaN();
-            if (a.drive.type == rod::Drive::Type::kTca) {
-              e["temperature_degC"] = units::K_to_degC(v);
-              const std::size_t i = static_cast<std::size_t>(r.actuators[k]);
-              if (i < sol.tensions_N.size()) {
-                rod::ActuatorResult c(a.name, sol.tensions_N[i], sol.elongations_m[i]);
-                rod::set_coil_contacts(a, act.actuators[i].segments, c);
-                e["coils_closed"] = c.coils_closed;
-                e["contact_force_N"] = c.contact_force_N;
-              }
-            } else {
-              e["tension_N"] = v;
-            }
-            acts.push_back(e);
-          }
-          j["actuators"] = acts;
-          converged = r.converged();
-          status = cosserat::to_string(r.status);
+          r = study::inverse_document(model, target_m, o);
         }
-        return checked(j, converged, check, "inverse", status);
+        return checked(r, check, "inverse");
       },
       py::arg("scenario"), py::arg("target_m"), py::kw_only(), py::arg("actuators") = py::none(),
       py::arg("max_temperature_degC") = py::none(), py::arg("check") = true,
@@ -210,35 +159,14 @@ contact_force_N [N]) or tension_N [N].)");
                            "tcasim.grasp needs a tip_constraint with a \"normal\" (the contact "
                            "direction from the finger toward the object)");
         }
-        cosserat::GraspOptions o;
-        o.mass_kg = units::g_to_kg(mass_g);
-        o.friction = friction;
-        o.fingers = fingers;
-        o.max_temperature_K = max_temperature_K(max_temperature_degC);
-        json j;
-        bool converged = false;
+        const double max_t_K = max_temperature_K(max_temperature_degC);
+        study::DocumentRun r;
         {
           py::gil_scoped_release release;
-          cosserat::Options so;
-          so.tolerance = 1e-12;  // as `tcasim grasp`
-          const cosserat::GraspResult r = cosserat::solve_grasp(model, so, o);
-          j["schema"] = "tcasim.grasp/1";
-          j["scenario"] = model.name;
-          j["converged"] = r.converged;
-          j["message"] = r.message;
-          j["mass_g"] = mass_g;
-          j["friction"] = friction;
-          j["fingers"] = fingers;
-          j["temperature_degC"] = units::K_to_degC(r.temperature_K);
-          j["normal_force_N"] = r.required_force_N;
-          j["blocked_normal_force_N"] = r.blocked_normal_force_N;
-          j["root_temperature_degC"] =
-              r.root_temperature_K ? json(units::K_to_degC(*r.root_temperature_K)) : json();
-          j["iterations"] = r.iterations;
-          j["tip"] = {{"position_m", vec(r.tip_position_W_m)}};
-          converged = r.converged;
+          r = study::grasp_document(model, mass_g, friction, fingers,
+                                    max_t_K);  // as `tcasim grasp`
         }
-        return checked(j, converged, check, "grasp", converged ? "converged" : "not converged");
+        return checked(r, check, "grasp");
       },
       py::arg("scenario"), py::kw_only(), py::arg("mass_g"), py::arg("friction"),
       py::arg("fingers"), py::arg("max_temperature_degC") = py::none(), py::arg("check") = true,
