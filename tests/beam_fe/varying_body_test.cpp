@@ -40,8 +40,7 @@ Eigen::Vector3d fe_tip(const rod::RodModel& m, const Options& o, int* elements =
 TEST(BeamFeVaryingBody, TaperedCantileverUnderEndMomentConvergesAtOrderTwoAndFour) {
   const MomentCantilever c;
   const rod::RodModel m = rod::parse_scenario(c.tapered());
-  const Eigen::Vector3d exact = test_support::planar_tip_position(
-      [&](double s) { return c.tapered_theta(s); }, {0.0, c.length_m});
+  const Eigen::Vector3d exact = c.tapered_tip();
   for (const int order : {1, 2}) {
     const std::vector<int> meshes =
         order == 1 ? std::vector<int>{8, 16, 32, 64} : std::vector<int>{4, 8, 16, 32};
@@ -61,8 +60,7 @@ TEST(BeamFeVaryingBody, SteppedSectionConvergesAtOrderTwoAndFourOnTheMeshAligned
   // n = 5, 10, 20, 40 are nested uniform refinements of each piece.
   const MomentCantilever c;
   const rod::RodModel m = rod::parse_scenario(c.stepped());
-  const Eigen::Vector3d exact = test_support::planar_tip_position(
-      [&](double s) { return c.stepped_theta(s); }, {0.0, c.step_s_m, c.length_m});
+  const Eigen::Vector3d exact = c.stepped_tip();
   for (const int order : {1, 2}) {
     const std::vector<int> meshes =
         order == 1 ? std::vector<int>{5, 10, 20, 40} : std::vector<int>{5, 10, 20};
@@ -79,18 +77,14 @@ TEST(BeamFeVaryingBody, SteppedSectionConvergesAtOrderTwoAndFourOnTheMeshAligned
   }
 }
 
-/// A stepped, tapered, precurved body with a tension string and tip moment (the jumps carry
-/// loaded strings), and gravity on a varying density.
+/// The loaded varying body (test_support::loaded_varying_body) with a tension string and a
+/// helical one (the jumps carry loaded strings), and gravity on a varying density.
 rod::RodModel loaded_varying_rod() {
-  MomentCantilever c;
-  nlohmann::json j = c.scenario({0.0, 0.03, 0.03, c.length_m}, {0.010, 0.009, 0.007, 0.006});
-  j["body"]["reference_curvature_1_m"] = {
-      0.0, nlohmann::json{{"s_m", {0.0, 0.06, 0.06, c.length_m}}, {"values", {0.0, 1.0, 2.0, 2.0}}},
-      0.0};
-  j["body"]["material"]["density_kg_m3"] = {{"s_m", {0.0, 0.05, 0.05, c.length_m}},
+  const double length_m = MomentCantilever{}.length_m;
+  nlohmann::json j = test_support::loaded_varying_body();
+  j["body"]["material"]["density_kg_m3"] = {{"s_m", {0.0, 0.05, 0.05, length_m}},
                                             {"values", {1000, 1000, 2000, 1500}}};
   j["gravity_m_s2"] = {0.0, 0.0, -9.81};
-  j["tip_load"]["moment_Nm"] = {2e-4, -1e-4, 0.0};
   j["actuators"] = nlohmann::json::parse(R"([
     {"name": "t", "routing": {"type": "straight", "offset_m": [0.002, 0.001]},
      "drive": {"type": "tension", "tension_N": 0.2}},

@@ -53,9 +53,7 @@ TEST(ShootingVaryingBody, TaperedCantileverUnderEndMomentMatchesTheClosedFormAtO
   const MomentCantilever c;
   const rod::RodModel m = rod::parse_scenario(c.tapered());
   ASSERT_FALSE(m.uniform_body());
-  const Eigen::Vector3d exact = test_support::planar_tip_position(
-      [&](double s) { return c.tapered_theta(s); }, {0.0, c.length_m});
-  expect_order_four(m, exact, "tapered cantilever, end moment");
+  expect_order_four(m, c.tapered_tip(), "tapered cantilever, end moment");
 }
 
 TEST(ShootingVaryingBody, SteppedSectionUnderEndMomentMatchesTheClosedFormAtOrderFour) {
@@ -63,9 +61,7 @@ TEST(ShootingVaryingBody, SteppedSectionUnderEndMomentMatchesTheClosedFormAtOrde
   const rod::RodModel m = rod::parse_scenario(c.stepped());
   ASSERT_EQ(m.breakpoints(), std::vector<double>{c.step_s_m});
   ASSERT_TRUE(m.jumps_at(c.step_s_m));
-  const Eigen::Vector3d exact = test_support::planar_tip_position(
-      [&](double s) { return c.stepped_theta(s); }, {0.0, c.step_s_m, c.length_m});
-  expect_order_four(m, exact, "stepped section, end moment");
+  expect_order_four(m, c.stepped_tip(), "stepped section, end moment");
   // The curvature jumps by the stiffness ratio (d0/d1)^4 = 16 at the step: the tip rotation
   // is theta(L) to the discretization error (1.1e-7 rad at 64 steps).
   const rod::Result r = solve(m, rk4(64));
@@ -92,15 +88,10 @@ TEST(ShootingVaryingBody, ConstantProfilesGiveTheUniformBodysNumbers) {
   EXPECT_LE((shooting_tip(uniform, rk4(64)) - exact).norm(), 1e-9 * c.length_m);
 }
 
-/// A stepped, tapered body with a TCA and a tension string: the jumps carry loaded strings.
+/// The loaded varying body (test_support::loaded_varying_body) with a TCA and a tension
+/// string: the jumps carry loaded strings.
 rod::RodModel loaded_varying_rod() {
-  MomentCantilever c;
-  nlohmann::json j = c.scenario({0.0, 0.03, 0.03, c.length_m}, {0.010, 0.009, 0.007, 0.006});
-  j["body"]["reference_curvature_1_m"] = {
-      0.0, nlohmann::json{{"s_m", {0.0, 0.06, 0.06, c.length_m}}, {"values", {0.0, 1.0, 2.0, 2.0}}},
-      0.0};
-  j["tip_load"]["moment_Nm"] = {2e-4, -1e-4, 0.0};
-  rod::RodModel m = rod::parse_scenario(j);
+  rod::RodModel m = rod::parse_scenario(test_support::loaded_varying_body());
   testing::add_tension_string(m, "t", 0.002, 0.001, 0.05);
   testing::add_tca_string(m, "tca", testing::manipulator_tca(), -0.0025, 0.0005,
                           units::degC_to_K(90.0));

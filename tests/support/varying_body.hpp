@@ -16,6 +16,33 @@
 
 namespace tcasim::test_support {
 
+/// p(L) = int_0^L (0, -sin theta, cos theta) ds by 16-point Gauss-Legendre on 64 panels per
+/// piece between the knots (theta smooth on each: converged to round-off).
+inline Eigen::Vector3d planar_tip_position(const std::function<double(double)>& theta,
+                                           const std::vector<double>& knots) {
+  static const std::array<double, 8> x{0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
+                                       0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
+                                       0.9445750230732326, 0.9894009349916499};
+  static const std::array<double, 8> w{0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
+                                       0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
+                                       0.0622535239386479, 0.0271524594117541};
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  constexpr int kPanels = 64;
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    const double h = (knots[k + 1] - knots[k]) / kPanels;
+    for (int i = 0; i < kPanels; ++i) {
+      const double mid = knots[k] + (i + 0.5) * h;
+      for (std::size_t g = 0; g < x.size(); ++g) {
+        for (const double sign : {-1.0, 1.0}) {
+          const double t = theta(mid + sign * 0.5 * h * x[g]);
+          p += 0.5 * h * w[g] * Eigen::Vector3d(0.0, -std::sin(t), std::cos(t));
+        }
+      }
+    }
+  }
+  return p;
+}
+
 /// The end-moment cantilevers: L, E, the two diameters and M (theta(L) about 1 rad).
 struct MomentCantilever {
   double length_m = 0.1;
@@ -55,33 +82,28 @@ struct MomentCantilever {
   nlohmann::json stepped() const {
     return scenario({0.0, step_s_m, step_s_m, length_m}, {d0_m, d0_m, d1_m, d1_m});
   }
+
+  /// The closed-form tip positions p(L) of tapered() and stepped().
+  Eigen::Vector3d tapered_tip() const {
+    return planar_tip_position([this](double s) { return tapered_theta(s); }, {0.0, length_m});
+  }
+  Eigen::Vector3d stepped_tip() const {
+    return planar_tip_position([this](double s) { return stepped_theta(s); },
+                               {0.0, step_s_m, length_m});
+  }
 };
 
-/// p(L) = int_0^L (0, -sin theta, cos theta) ds by 16-point Gauss-Legendre on 64 panels per
-/// piece between the knots (theta smooth on each: converged to round-off).
-inline Eigen::Vector3d planar_tip_position(const std::function<double(double)>& theta,
-                                           const std::vector<double>& knots) {
-  static const std::array<double, 8> x{0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
-                                       0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
-                                       0.9445750230732326, 0.9894009349916499};
-  static const std::array<double, 8> w{0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
-                                       0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
-                                       0.0622535239386479, 0.0271524594117541};
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  constexpr int kPanels = 64;
-  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
-    const double h = (knots[k + 1] - knots[k]) / kPanels;
-    for (int i = 0; i < kPanels; ++i) {
-      const double mid = knots[k] + (i + 0.5) * h;
-      for (std::size_t g = 0; g < x.size(); ++g) {
-        for (const double sign : {-1.0, 1.0}) {
-          const double t = theta(mid + sign * 0.5 * h * x[g]);
-          p += 0.5 * h * w[g] * Eigen::Vector3d(0.0, -std::sin(t), std::cos(t));
-        }
-      }
-    }
-  }
-  return p;
+/// The loaded varying body both solvers' tests use (without strings, gravity or density):
+/// stepped and tapered (diameter 10, 9 | 7, 6 mm with a jump at 30 mm), precurved about body
+/// y (0 -> 1 1/m over 60 mm, a jump to 2 1/m there), under the tip moment (2e-4, -1e-4, 0) N m.
+inline nlohmann::json loaded_varying_body() {
+  const MomentCantilever c;
+  nlohmann::json j = c.scenario({0.0, 0.03, 0.03, c.length_m}, {0.010, 0.009, 0.007, 0.006});
+  j["body"]["reference_curvature_1_m"] = {
+      0.0, nlohmann::json{{"s_m", {0.0, 0.06, 0.06, c.length_m}}, {"values", {0.0, 1.0, 2.0, 2.0}}},
+      0.0};
+  j["tip_load"]["moment_Nm"] = {2e-4, -1e-4, 0.0};
+  return j;
 }
 
 }  // namespace tcasim::test_support
