@@ -449,6 +449,7 @@ VectorXd BeamDynamics::step_residual(const rod::Loads& loads, const VectorXd& x,
 }
 
 double BeamDynamics::time_s() const { return impl_->t; }
+double BeamDynamics::time_step_s() const { return impl_->h; }
 const State& BeamDynamics::state() const { return impl_->st; }
 const Discretization& BeamDynamics::discretization() const { return *impl_->disc_static; }
 const VectorXd& BeamDynamics::velocities() const { return impl_->v; }

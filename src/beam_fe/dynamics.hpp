@@ -15,6 +15,8 @@
 /// vdot_{n+1} as affine functions of x; the Jacobian is exact (step_residual for tests).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,6 +92,7 @@ class BeamDynamics {
   BeamDynamicsSummary step(const rod::Loads& loads);
 
   double time_s() const;
+  double time_step_s() const;  ///< DynamicsOptions::dt_s
   const State& state() const;  ///< nodal configuration of the last converged step
   const Discretization& discretization() const;
   /// Per free node (6 each): velocities (v_a world, W_a body) of the last converged step.
@@ -115,5 +118,25 @@ class BeamDynamics {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The loads at time t [s] (as cosserat::LoadsAt).
+using LoadsAt = std::function<rod::Loads(double t_s)>;
+
+/// Outcome of a trajectory run.
+struct TrajectorySummary {
+  bool ok = false;           ///< every step (and the static state) converged
+  long long steps_done = 0;  ///< converged time steps
+  std::string message;       ///< why it stopped early (empty when ok)
+};
+
+/// Runs `steps` time steps from the static state under loads_at(0) and writes the trajectory
+/// CSV of docs/scenario-format.md "Trajectory file" (the columns of `tcasim simulate`): the
+/// header, the row of t = 0, then every `output_every`-th step and the last one; tension drives
+/// have no temperature (nan). A failed step (or static state) ends the rows with a line
+/// "# ..." saying why. `after_row` (optional) is called after each written row.
+TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model,
+                                   const LoadsAt& loads_at, long long steps, long long output_every,
+                                   std::ostream& os,
+                                   const std::function<void(const BeamDynamics&)>& after_row = {});
 
 }  // namespace tcasim::beam_fe
