@@ -4,12 +4,18 @@
 #include <fmt/format.h>
 
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "beam_fe/dynamics_damping.hpp"
 #include "common/error.hpp"
 #include "common/so3.hpp"
+
+extern "C" {
+#include <klu.h>
+}
 
 namespace tcasim::beam_fe {
 namespace {
@@ -46,6 +52,58 @@ void gauss_rule(int points, std::vector<double>& xi, std::vector<double>& w) {
     w = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   }
 }
+
+/// Index of entry (i, j) of a compressed column-major matrix in its values (it must exist).
+int slot_of(const SpMat& A, int i, int j) {
+  const int* inner = A.innerIndexPtr();
+  const int* begin = inner + A.outerIndexPtr()[j];
+  const int* end = inner + A.outerIndexPtr()[j + 1];
+  const int* it = std::lower_bound(begin, end, i);
+  if (it == end || *it != i) throw std::logic_error("beam_fe dynamics: entry outside the pattern");
+  return static_cast<int>(it - inner);
+}
+
+/// KLU with the symbolic analysis done once and refactorization with the last pivot order
+/// while its reciprocal condition estimate stays within 1e-3 of the last full factorization's.
+class Klu {
+ public:
+  Klu() { klu_defaults(&common_); }
+  Klu(const Klu&) = delete;
+  Klu& operator=(const Klu&) = delete;
+  ~Klu() {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
+  }
+  bool factorize(SpMat& A) {
+    int* Ap = A.outerIndexPtr();
+    int* Ai = A.innerIndexPtr();
+    double* Ax = A.valuePtr();
+    if (!symbolic_) symbolic_ = klu_analyze(static_cast<int>(A.rows()), Ap, Ai, &common_);
+    if (!symbolic_) return false;
+    if (numeric_) {
+      if (klu_refactor(Ap, Ai, Ax, symbolic_, numeric_, &common_) &&
+          klu_rcond(symbolic_, numeric_, &common_) && common_.rcond >= 1e-3 * rcond_full_) {
+        return true;
+      }
+      klu_free_numeric(&numeric_, &common_);
+    }
+    numeric_ = klu_factor(Ap, Ai, Ax, symbolic_, &common_);
+    if (!numeric_ || !klu_rcond(symbolic_, numeric_, &common_)) return false;
+    rcond_full_ = common_.rcond;
+    return common_.status == KLU_OK;
+  }
+  bool solve(VectorXd& x) {
+    return numeric_ &&
+           klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_) &&
+           common_.status == KLU_OK;
+  }
+
+ private:
+  klu_common common_;
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+  double rcond_full_ = 0.0;
+};
 
 }  // namespace
 
@@ -110,9 +168,9 @@ struct BeamDynamics::Impl {
   // Converged step n and trial step n + 1.
   State st, trial;
   VectorXd v, vd, a, v1, vd1, a1, x_last;
-  SpMat K, J;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
-  bool analyzed = false;
+  SpMat K;
+  Klu lu;
+  std::vector<int> inertia_slots;  // value index of every inertia entry, in assembly order
   Discretization::Floor floor{0.0, 0.0};
 };
 
@@ -284,18 +342,33 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
         node_J[k].cwiseProduct(vd1.segment<3>(6 * (k - 1) + 3)) + W.cross(JW);
   }
   if (!Jout) return r;
-  // dr/dx = K T h + c_a M + c_v C_gyro, T = diag(I, Jr(h x_theta)) per node.
-  std::vector<Eigen::Triplet<double>> tT, tI;
-  tT.reserve(static_cast<std::size_t>(free_dofs) * 4);
+  // dr/dx = K T h + c_a M + c_v C_gyro, T = diag(I, Jr(h x_theta)) per node, in place in K's
+  // pattern: T mixes only the three rotation columns of a node, which share their rows, and the
+  // inertia blocks lie inside the element blocks.
+  double* val = K.valuePtr();
+  const int* outer = K.outerIndexPtr();
   for (int k = 1; k < nodes; ++k) {
     const int b = 6 * (k - 1);
-    for (int i = 0; i < 3; ++i) tT.emplace_back(b + i, b + i, h);
-    const Matrix3d Jr = so3::right_jacobian(h * x.segment<3>(b + 3));
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) tT.emplace_back(b + 3 + i, b + 3 + j, h * Jr(i, j));
+    for (int i = outer[b]; i < outer[b + 3]; ++i) val[i] *= h;
+    const Matrix3d hJr = h * so3::right_jacobian(h * x.segment<3>(b + 3));
+    const int count = outer[b + 4] - outer[b + 3];
+    if (outer[b + 5] - outer[b + 4] != count || outer[b + 6] - outer[b + 5] != count)
+      throw std::logic_error("beam_fe dynamics: rotation columns of a node differ in pattern");
+    double* c0 = val + outer[b + 3];
+    double* c1 = val + outer[b + 4];
+    double* c2 = val + outer[b + 5];
+    for (int i = 0; i < count; ++i) {
+      const double k0 = c0[i], k1 = c1[i], k2 = c2[i];
+      c0[i] = k0 * hJr(0, 0) + k1 * hJr(1, 0) + k2 * hJr(2, 0);
+      c1[i] = k0 * hJr(0, 1) + k1 * hJr(1, 1) + k2 * hJr(2, 1);
+      c2[i] = k0 * hJr(0, 2) + k1 * hJr(1, 2) + k2 * hJr(2, 2);
+    }
   }
-  SpMat T(free_dofs, free_dofs);
-  T.setFromTriplets(tT.begin(), tT.end());
+  std::size_t next = 0;
+  auto add = [&](int i, int j, double value) {
+    if (next == inertia_slots.size()) inertia_slots.push_back(slot_of(K, i, j));
+    val[inertia_slots[next++]] += value;
+  };
   for (int e = 0; e < disc_static->element_count(); ++e) {
     for (int i = 0; i < n; ++i) {
       const int ni = e * order + i;
@@ -304,12 +377,11 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
         const int nj = e * order + j;
         if (nj == 0) continue;
         const double mij = c_a * elem_mass[(static_cast<std::size_t>(e) * n + i) * n + j];
-        for (int c = 0; c < 3; ++c) tI.emplace_back(6 * (ni - 1) + c, 6 * (nj - 1) + c, mij);
+        for (int c = 0; c < 3; ++c) add(6 * (ni - 1) + c, 6 * (nj - 1) + c, mij);
       }
     }
   }
-  for (int c = 0; c < 3; ++c)
-    tI.emplace_back(free_dofs - 6 + c, free_dofs - 6 + c, c_a * opt.tip_mass_kg);
+  for (int c = 0; c < 3; ++c) add(free_dofs - 6 + c, free_dofs - 6 + c, c_a * opt.tip_mass_kg);
   for (int k = 1; k < nodes; ++k) {
     const int b = 6 * (k - 1) + 3;
     const Vector3d W = v1.segment<3>(b);
@@ -317,12 +389,9 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
     // d(W x J W)/dW = hat(W) J - hat(J W).
     const Matrix3d G = c_a * Jm + c_v * (so3::hat(W) * Jm - so3::hat(Jm * W));
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) tI.emplace_back(b + i, b + j, G(i, j));
+      for (int j = 0; j < 3; ++j) add(b + i, b + j, G(i, j));
   }
-  SpMat Imat(free_dofs, free_dofs);
-  Imat.setFromTriplets(tI.begin(), tI.end());
-  *Jout = SpMat(K * T) + Imat;
-  Jout->makeCompressed();
+  if (Jout != &K) *Jout = K;
   return r;
 }
 
@@ -393,7 +462,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   VectorXd x = d.v + d.h * 0.5 * d.a;
   for (int it = 0;; ++it) {
     const bool need_jacobian = true;
-    const VectorXd r = d.evaluate(x, need_jacobian ? &d.J : nullptr);
+    const VectorXd r = d.evaluate(x, need_jacobian ? &d.K : nullptr);
     if (d.within_tolerance(r, &sum.residual)) break;
     if (!r.allFinite()) {
       sum.status = BeamDynamicsSummary::Status::kNonFinite;
@@ -406,18 +475,13 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
                                 d.opt.max_iterations, sum.residual);
       return sum;
     }
-    if (!d.analyzed) {
-      d.lu.analyzePattern(d.J);
-      d.analyzed = true;
-    }
-    d.lu.factorize(d.J);
-    if (d.lu.info() != Eigen::Success) {
+    if (!d.lu.factorize(d.K)) {
       sum.status = BeamDynamicsSummary::Status::kSingular;
       sum.message = "the iteration matrix could not be factorized";
       return sum;
     }
-    const VectorXd dx = d.lu.solve(-r);
-    if (!dx.allFinite()) {
+    VectorXd dx = -r;
+    if (!d.lu.solve(dx) || !dx.allFinite()) {
       sum.status = BeamDynamicsSummary::Status::kNonFinite;
       sum.message = "the Newton step is not finite";
       return sum;
