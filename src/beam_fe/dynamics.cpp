@@ -170,6 +170,7 @@ struct BeamDynamics::Impl {
   VectorXd v, vd, a, v1, vd1, a1, x_last;
   SpMat K;
   Klu lu;
+  bool factored = false;           // lu holds a factorization of an earlier step Jacobian
   std::vector<int> inertia_slots;  // value index of every inertia entry, in assembly order
   Discretization::Floor floor{0.0, 0.0};
 };
@@ -460,25 +461,42 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   BeamDynamicsSummary sum;
   // Predictor: a_{n+1} = a_n.
   VectorXd x = d.v + d.h * 0.5 * d.a;
-  for (int it = 0;; ++it) {
-    const bool need_jacobian = true;
-    const VectorXd r = d.evaluate(x, need_jacobian ? &d.K : nullptr);
+  // Chord (simplified Newton) iterations with the last factorization, kept across steps; a
+  // fresh Jacobian when one contracts the residual by less than kChordContraction, after
+  // kMaxChordSteps chord steps, or always without reuse_factorization.
+  constexpr double kChordContraction = 0.25;
+  constexpr int kMaxChordSteps = 6;
+  bool fresh = !d.factored || !d.opt.reuse_factorization;
+  int chord_steps = 0;
+  double r_prev = std::numeric_limits<double>::infinity();
+  while (true) {
+    const VectorXd r = d.evaluate(x, fresh ? &d.K : nullptr);
     if (d.within_tolerance(r, &sum.residual)) break;
     if (!r.allFinite()) {
       sum.status = BeamDynamicsSummary::Status::kNonFinite;
       sum.message = "the residual is not finite";
       return sum;
     }
-    if (it == d.opt.max_iterations) {
+    if (!fresh && (sum.residual > kChordContraction * r_prev || chord_steps >= kMaxChordSteps)) {
+      fresh = true;  // the same x again, with its Jacobian
+      continue;
+    }
+    if (sum.iterations == d.opt.max_iterations) {
       sum.status = BeamDynamicsSummary::Status::kMaxIterations;
       sum.message = fmt::format("no convergence in {} Newton iterations (scaled residual {:.3e})",
                                 d.opt.max_iterations, sum.residual);
       return sum;
     }
-    if (!d.lu.factorize(d.K)) {
-      sum.status = BeamDynamicsSummary::Status::kSingular;
-      sum.message = "the iteration matrix could not be factorized";
-      return sum;
+    if (fresh) {
+      d.factored = d.lu.factorize(d.K);
+      if (!d.factored) {
+        sum.status = BeamDynamicsSummary::Status::kSingular;
+        sum.message = "the iteration matrix could not be factorized";
+        return sum;
+      }
+      chord_steps = 0;
+    } else {
+      ++chord_steps;
     }
     VectorXd dx = -r;
     if (!d.lu.solve(dx) || !dx.allFinite()) {
@@ -488,6 +506,8 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     }
     x += dx;
     ++sum.iterations;
+    r_prev = sum.residual;
+    fresh = !d.opt.reuse_factorization;
   }
   sum.status = BeamDynamicsSummary::Status::kConverged;
   if (d.kv) d.kv->advance(d.trial);

@@ -43,6 +43,9 @@ struct DynamicsOptions {
   /// plus the round-off floor of the rows (Discretization::round_off_floor).
   double tolerance = 1e-10;
   int max_iterations = 30;  ///< Newton iterations per time step
+  /// Reuse the last factorization of the step Jacobian (chord iterations, across steps) while
+  /// it contracts the residual by 4 per iteration; false: a fresh Jacobian every iteration.
+  bool reuse_factorization = true;
   /// Kelvin-Voigt viscosity eta [Pa s] (as cosserat::DynamicsOptions::viscosity_Pa_s).
   double viscosity_Pa_s = 0.0;
   /// Point mass at the tip [kg] (inertia and weight; replaces the model's tip_mass_kg).
