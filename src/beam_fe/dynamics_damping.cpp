@@ -12,6 +12,7 @@
 
 #include <cmath>
 
+#include "beam_fe/dynamics_internal.hpp"
 #include "common/dual.hpp"
 #include "common/lie_series.hpp"
 #include "common/so3.hpp"
@@ -25,37 +26,8 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 using Vector9d = Eigen::Matrix<double, 9, 1>;
-
-void shape(int order, double xi, double* N, double* dN) {
-  if (order == 1) {
-    N[0] = 0.5 * (1.0 - xi);
-    N[1] = 0.5 * (1.0 + xi);
-    dN[0] = -0.5;
-    dN[1] = 0.5;
-  } else {
-    N[0] = 0.5 * xi * (xi - 1.0);
-    N[1] = 1.0 - xi * xi;
-    N[2] = 0.5 * xi * (xi + 1.0);
-    dN[0] = xi - 0.5;
-    dN[1] = -2.0 * xi;
-    dN[2] = xi + 0.5;
-  }
-}
-
-void gauss(int points, std::vector<double>& xi, std::vector<double>& w) {
-  if (points == 1) {
-    xi = {0.0};
-    w = {2.0};
-  } else if (points == 2) {
-    const double x = 1.0 / std::sqrt(3.0);
-    xi = {-x, x};
-    w = {1.0, 1.0};
-  } else {
-    const double x = std::sqrt(0.6);
-    xi = {-x, 0.0, x};
-    w = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-  }
-}
+using dynamics_internal::gauss_rule;
+using dynamics_internal::shape;
 
 /// sigma . eps(g) as a nested dual over g: value, gradient (F^T sigma) and Hessian (S).
 void stress_work_jet(const Vector9d& g, const Vector6d& sigma, Vector9d& grad, Matrix9d& hess) {
@@ -93,7 +65,7 @@ void add_fixed_stress_forces(const Discretization& disc, const State& state,
   const int ref = order == 1 ? 0 : 1;
   std::vector<double> xi, w;
   const std::size_t per_element = sigma.size() / static_cast<std::size_t>(disc.element_count());
-  gauss(static_cast<int>(per_element), xi, w);
+  gauss_rule(static_cast<int>(per_element), xi, w);
   double N[3], dNxi[3];
   for (int e = 0; e < disc.element_count(); ++e) {
     const int first = e * order;
