@@ -1,0 +1,523 @@
+// Generalized-alpha time integration of the beam FE on the Lie group (beam_fe/dynamics.hpp).
+#include "beam_fe/dynamics.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "beam_fe/dynamics_damping.hpp"
+#include "beam_fe/dynamics_internal.hpp"
+#include "common/error.hpp"
+#include "common/so3.hpp"
+
+namespace tcasim::beam_fe {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+using SpMat = Eigen::SparseMatrix<double>;
+using dynamics_internal::gauss_rule;
+using dynamics_internal::Klu;
+using dynamics_internal::slot_of;
+
+}  // namespace
+
+const char* to_string(BeamDynamicsSummary::Status s) {
+  switch (s) {
+    case BeamDynamicsSummary::Status::kConverged:
+      return "converged";
+    case BeamDynamicsSummary::Status::kMaxIterations:
+      return "max-iterations";
+    case BeamDynamicsSummary::Status::kSingular:
+      return "singular-matrix";
+    case BeamDynamicsSummary::Status::kNonFinite:
+      return "non-finite";
+    case BeamDynamicsSummary::Status::kNotRun:
+      return "not-run";
+  }
+  return "unknown";
+}
+
+AlphaParameters alpha_parameters(double rho) {
+  AlphaParameters p;
+  p.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+  p.alpha_f = rho / (rho + 1.0);
+  p.gamma = 0.5 + p.alpha_f - p.alpha_m;
+  p.beta = 0.25 * (p.gamma + 0.5) * (p.gamma + 0.5);
+  return p;
+}
+
+struct BeamDynamics::Impl {
+  Impl(const rod::RodModel& m, const DynamicsOptions& o);
+
+  /// Loads at which the residual is evaluated (applied; tensions into `trial`).
+  void set_loads(const rod::Loads& loads);
+  /// Trial state and rates at increment x; the residual (unscaled) and, with J, dr/dx.
+  VectorXd evaluate(const VectorXd& x, SpMat* J);
+  /// Static residual (external loads subtracted) at `st`, tangent in material increments.
+  VectorXd static_residual(const State& st, SpMat* K) const;
+  /// External nodal loads into r (r -= f_ext) and the tip moment's tangent into K.
+  void subtract_external(const State& st, VectorXd& r, SpMat* K) const;
+  bool within_tolerance(const VectorXd& r, double* scaled) const;
+  BeamDynamicsSummary newton_static();
+
+  const rod::RodModel& model;
+  DynamicsOptions opt;
+  AlphaParameters ap;
+  rod::RodModel model_static, model_dyn;  // tip mass of the options; model_dyn: K + c B
+  Options fe;
+  std::unique_ptr<Discretization> disc_static, disc_dyn;
+  int nodes = 0, free_dofs = 0, n_act = 0;
+  double h = 0.0, t = 0.0, L = 0.0, F_c = 1.0;
+  // Coefficients of the affine maps x -> vdot, v (d vdot/dx, d v/dx) and strain rate c_e.
+  double c_a = 0.0, c_v = 0.0, c_e = 0.0;
+  // Mass: per element (order + 1)^2 entries int rho A N_a N_b ds; per node the row sum
+  // int rho A N_a ds and the nodal rotational inertia diag.
+  std::vector<double> elem_mass;
+  std::vector<double> node_mass;
+  std::vector<Vector3d> node_J;
+  std::unique_ptr<damping::StrainRateHistory> kv;  // Kelvin-Voigt history (viscosity > 0)
+  // Loads of the current evaluation.
+  Vector3d g_W = Vector3d::Zero(), F_tip = Vector3d::Zero(), M_tip = Vector3d::Zero();
+  std::vector<double> tensions;
+  // Converged step n and trial step n + 1.
+  State st, trial;
+  VectorXd v, vd, a, v1, vd1, a1, x_last;
+  SpMat K;
+  Klu lu;
+  bool factored = false;           // lu holds a factorization of an earlier step Jacobian
+  std::vector<int> inertia_slots;  // value index of every inertia entry, in assembly order
+  Discretization::Floor floor{0.0, 0.0};
+};
+
+BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
+    : model(m), opt(o), model_static(m), model_dyn(m) {
+  require(std::isfinite(o.dt_s) && o.dt_s > 0.0, "dynamics.dt_s", o.dt_s, "must be > 0");
+  require(o.rho_inf >= 0.0 && o.rho_inf <= 1.0, "dynamics.rho_inf", o.rho_inf, "must be in [0, 1]");
+  require(std::isfinite(o.tolerance) && o.tolerance > 0.0, "dynamics.tolerance", o.tolerance,
+          "must be > 0");
+  require(o.max_iterations >= 1, "dynamics.max_iterations", o.max_iterations, "must be >= 1");
+  require(std::isfinite(o.viscosity_Pa_s) && o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
+          o.viscosity_Pa_s, "must be >= 0");
+  require(std::isfinite(o.tip_mass_kg) && o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
+          o.tip_mass_kg, "must be >= 0");
+  if (m.tip_constraint) {
+    throw DomainError("FE dynamics: a tip_constraint is not supported in dynamics yet");
+  }
+  for (const auto& act : m.actuators) {
+    if (act.drive.type != rod::Drive::Type::kTension) {
+      throw DomainError("FE dynamics: actuator '" + act.name +
+                        "' has a TCA drive; dynamics supports tension drives only so far");
+    }
+  }
+  if (o.viscosity_Pa_s > 0.0 && !m.uniform_body()) {
+    throw DomainError("FE dynamics: Kelvin-Voigt damping needs a uniform body so far");
+  }
+  ap = alpha_parameters(o.rho_inf);
+  h = o.dt_s;
+  L = m.length_m;
+  c_a = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * ap.beta * h);
+  c_v = ap.gamma / ap.beta;
+  c_e = ap.gamma / (ap.beta * h);
+  model_static.tip_mass_kg = o.tip_mass_kg;
+  model_dyn.tip_mass_kg = o.tip_mass_kg;
+  if (o.viscosity_Pa_s > 0.0) {
+    // K + c_e B: E -> E + c_e eta, G -> G + c_e eta_s with eta_s = eta / (2 (1 + poisson)),
+    // exactly the damping matrices B_se, B_bt of docs/conventions.md.
+    const double eta = o.viscosity_Pa_s;
+    model_dyn.material.youngs_modulus_Pa += c_e * eta;
+    model_dyn.material.shear_modulus_Pa += c_e * eta / (2.0 * (1.0 + m.material.poisson_ratio));
+  }
+  fe.elements = o.elements;
+  fe.order = o.order;
+  fe.integration = o.integration;
+  disc_static = std::make_unique<Discretization>(model_static, fe);  // validates elements, order
+  disc_dyn = std::make_unique<Discretization>(model_dyn, fe);
+  nodes = disc_static->node_count();
+  free_dofs = 6 * (nodes - 1);
+  n_act = static_cast<int>(m.actuators.size());
+  floor = disc_static->round_off_floor();
+
+  // Consistent mass (3-point Gauss: exact for uniform quadratic elements) and nodal inertia.
+  const int order = disc_static->order(), n = order + 1;
+  std::vector<double> xi, w;
+  gauss_rule(3, xi, w);
+  elem_mass.assign(static_cast<std::size_t>(disc_static->element_count()) * n * n, 0.0);
+  node_mass.assign(nodes, 0.0);
+  node_J.assign(nodes, Vector3d::Zero());
+  double N[3], dN[3];
+  for (int e = 0; e < disc_static->element_count(); ++e) {
+    const double s0 = disc_static->element_start_m(e), he = disc_static->element_length_m(e);
+    for (std::size_t g = 0; g < xi.size(); ++g) {
+      dynamics_internal::shape(order, xi[g], N, dN);
+      const double s = s0 + 0.5 * (xi[g] + 1.0) * he;
+      const double wj = w[g] * 0.5 * he;
+      const double rhoA = m.mass_per_length_kg_m(s);
+      const rod::SectionProperties sp = m.section.properties_at(s);
+      const double rho = m.uniform_body() ? m.material.density_kg_m3
+                                          : m.material.density_profile.value(s, rod::Side::kRight);
+      // [Till2019] / cosserat dynamics: rho J = diag(rho I_x, rho I_y, rho (I_x + I_y)).
+      const Vector3d rhoJ(rho * sp.I_x_m4, rho * sp.I_y_m4, rho * (sp.I_x_m4 + sp.I_y_m4));
+      for (int i = 0; i < n; ++i) {
+        const int node = e * order + i;
+        node_mass[node] += wj * rhoA * N[i];
+        // Nodal quadrature of the rotational kinetic energy: weights int N_a ds.
+        node_J[node] += wj * N[i] * rhoJ;
+        for (int j = 0; j < n; ++j)
+          elem_mass[(static_cast<std::size_t>(e) * n + i) * n + j] += wj * rhoA * N[i] * N[j];
+      }
+    }
+  }
+  if (o.viscosity_Pa_s > 0.0) {
+    kv = std::make_unique<damping::StrainRateHistory>(*disc_dyn, m, o.viscosity_Pa_s, ap, h);
+  }
+  v = vd = a = VectorXd::Zero(free_dofs);
+  tensions.assign(n_act, 0.0);
+}
+
+void BeamDynamics::Impl::set_loads(const rod::Loads& loads_in) {
+  loads_in.validate(model);
+  const rod::Loads l = loads_in.applied(model);
+  g_W = l.gravity_W_m_s2;
+  F_tip = l.tip_force_W_N;
+  M_tip = l.tip_moment_W_Nm;
+  for (int i = 0; i < n_act; ++i) tensions[i] = l.actuators[i].tension_N;
+}
+
+void BeamDynamics::Impl::subtract_external(const State& s, VectorXd& r, SpMat* Kt) const {
+  // Gravity: consistent nodal loads int rho A N_a ds g; tip force with the tip mass's weight.
+  for (int k = 1; k < nodes; ++k) r.segment<3>(6 * (k - 1)) -= node_mass[k] * g_W;
+  r.segment<3>(free_dofs - 6) -= F_tip + opt.tip_mass_kg * g_W;
+  // World-frame tip moment: virtual work M_e . dtheta_W = (R^T M_e) . dtheta_B.
+  const Vector3d M_B = s.q_WB.back().toRotationMatrix().transpose() * M_tip;
+  r.segment<3>(free_dofs - 3) -= M_B;
+  if (Kt) {
+    const Matrix3d Km = -so3::hat(M_B);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Kt->coeffRef(free_dofs - 3 + i, free_dofs - 3 + j) += Km(i, j);
+  }
+}
+
+VectorXd BeamDynamics::Impl::static_residual(const State& s, SpMat* Kt) const {
+  VectorXd r = disc_static->residual(s, 0.0, Kt);
+  subtract_external(s, r, Kt);
+  return r;
+}
+
+bool BeamDynamics::Impl::within_tolerance(const VectorXd& r, double* scaled) const {
+  bool ok = r.allFinite();
+  double worst = 0.0;
+  for (int i = 0; i < free_dofs; ++i) {
+    const bool moment = i % 6 >= 3;
+    const double unit = moment ? F_c * L : F_c;
+    worst = std::max(worst, std::abs(r[i]) / unit);
+    ok = ok && std::abs(r[i]) <= opt.tolerance * unit + (moment ? floor.moment : floor.force);
+  }
+  if (scaled) *scaled = r.allFinite() ? worst : std::numeric_limits<double>::infinity();
+  return ok;
+}
+
+VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
+  // Newmark and alpha relations ([Bruls2012] Eqs. (13)-(16)):
+  //   q1 = q exp(h x), x = v + h (1/2 - beta) a + h beta a1,
+  //   v1 = v + h (1 - gamma) a + h gamma a1,
+  //   (1 - alpha_m) a1 + alpha_m a = (1 - alpha_f) vd1 + alpha_f vd.
+  a1 = (x - v - h * (0.5 - ap.beta) * a) / (ap.beta * h);
+  v1 = v + h * (1.0 - ap.gamma) * a + h * ap.gamma * a1;
+  vd1 = ((1.0 - ap.alpha_m) * a1 + ap.alpha_m * a - ap.alpha_f * vd) / (1.0 - ap.alpha_f);
+  trial = st;
+  for (int k = 1; k < nodes; ++k) {
+    trial.p_W_m[k] += h * x.segment<3>(6 * (k - 1));
+    trial.q_WB[k] =
+        (st.q_WB[k] * so3::exp_quaternion(h * x.segment<3>(6 * (k - 1) + 3))).normalized();
+  }
+  trial.tensions_N = tensions;
+  VectorXd r = disc_dyn->residual(trial, 0.0, Jout ? &K : nullptr);
+  if (kv) kv->add_history_forces(trial, r, Jout ? &K : nullptr);
+  subtract_external(trial, r, Jout ? &K : nullptr);
+  // Inertia: consistent translational mass (world frame), nodal rotational inertia with the
+  // gyroscopic term W x J W (body frame), the tip mass at the tip node.
+  const int order = disc_static->order(), n = order + 1;
+  for (int e = 0; e < disc_static->element_count(); ++e) {
+    for (int i = 0; i < n; ++i) {
+      const int ni = e * order + i;
+      if (ni == 0) continue;
+      for (int j = 0; j < n; ++j) {
+        const int nj = e * order + j;
+        if (nj == 0) continue;
+        r.segment<3>(6 * (ni - 1)) +=
+            elem_mass[(static_cast<std::size_t>(e) * n + i) * n + j] * vd1.segment<3>(6 * (nj - 1));
+      }
+    }
+  }
+  r.segment<3>(free_dofs - 6) += opt.tip_mass_kg * vd1.segment<3>(free_dofs - 6);
+  for (int k = 1; k < nodes; ++k) {
+    const Vector3d W = v1.segment<3>(6 * (k - 1) + 3);
+    const Vector3d JW = node_J[k].cwiseProduct(W);
+    r.segment<3>(6 * (k - 1) + 3) +=
+        node_J[k].cwiseProduct(vd1.segment<3>(6 * (k - 1) + 3)) + W.cross(JW);
+  }
+  if (!Jout) return r;
+  // dr/dx = K T h + c_a M + c_v C_gyro, T = diag(I, Jr(h x_theta)) per node, in place in K's
+  // pattern: T mixes only the three rotation columns of a node, which share their rows, and the
+  // inertia blocks lie inside the element blocks.
+  double* val = K.valuePtr();
+  const int* outer = K.outerIndexPtr();
+  for (int k = 1; k < nodes; ++k) {
+    const int b = 6 * (k - 1);
+    for (int i = outer[b]; i < outer[b + 3]; ++i) val[i] *= h;
+    const Matrix3d hJr = h * so3::right_jacobian(h * x.segment<3>(b + 3));
+    const int count = outer[b + 4] - outer[b + 3];
+    if (outer[b + 5] - outer[b + 4] != count || outer[b + 6] - outer[b + 5] != count)
+      throw std::logic_error("beam_fe dynamics: rotation columns of a node differ in pattern");
+    double* c0 = val + outer[b + 3];
+    double* c1 = val + outer[b + 4];
+    double* c2 = val + outer[b + 5];
+    for (int i = 0; i < count; ++i) {
+      const double k0 = c0[i], k1 = c1[i], k2 = c2[i];
+      c0[i] = k0 * hJr(0, 0) + k1 * hJr(1, 0) + k2 * hJr(2, 0);
+      c1[i] = k0 * hJr(0, 1) + k1 * hJr(1, 1) + k2 * hJr(2, 1);
+      c2[i] = k0 * hJr(0, 2) + k1 * hJr(1, 2) + k2 * hJr(2, 2);
+    }
+  }
+  std::size_t next = 0;
+  auto add = [&](int i, int j, double value) {
+    if (next == inertia_slots.size()) inertia_slots.push_back(slot_of(K, i, j));
+    val[inertia_slots[next++]] += value;
+  };
+  for (int e = 0; e < disc_static->element_count(); ++e) {
+    for (int i = 0; i < n; ++i) {
+      const int ni = e * order + i;
+      if (ni == 0) continue;
+      for (int j = 0; j < n; ++j) {
+        const int nj = e * order + j;
+        if (nj == 0) continue;
+        const double mij = c_a * elem_mass[(static_cast<std::size_t>(e) * n + i) * n + j];
+        for (int c = 0; c < 3; ++c) add(6 * (ni - 1) + c, 6 * (nj - 1) + c, mij);
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c) add(free_dofs - 6 + c, free_dofs - 6 + c, c_a * opt.tip_mass_kg);
+  for (int k = 1; k < nodes; ++k) {
+    const int b = 6 * (k - 1) + 3;
+    const Vector3d W = v1.segment<3>(b);
+    const Matrix3d Jm = node_J[k].asDiagonal();
+    // d(W x J W)/dW = hat(W) J - hat(J W).
+    const Matrix3d G = c_a * Jm + c_v * (so3::hat(W) * Jm - so3::hat(Jm * W));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) add(b + i, b + j, G(i, j));
+  }
+  if (Jout != &K) *Jout = K;
+  return r;
+}
+
+BeamDynamicsSummary BeamDynamics::Impl::newton_static() {
+  BeamDynamicsSummary sum;
+  SpMat Ks;
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu;
+  for (int it = 0;; ++it) {
+    st.tensions_N = tensions;
+    const VectorXd r = static_residual(st, &Ks);
+    if (within_tolerance(r, &sum.residual)) {
+      sum.status = BeamDynamicsSummary::Status::kConverged;
+      return sum;
+    }
+    if (!r.allFinite()) {
+      sum.status = BeamDynamicsSummary::Status::kNonFinite;
+      sum.message = "the static residual is not finite";
+      return sum;
+    }
+    if (it == opt.max_iterations) {
+      sum.status = BeamDynamicsSummary::Status::kMaxIterations;
+      sum.message =
+          fmt::format("static state: no convergence in {} Newton iterations", opt.max_iterations);
+      return sum;
+    }
+    Ks.makeCompressed();
+    slu.compute(Ks);
+    if (slu.info() != Eigen::Success) {
+      sum.status = BeamDynamicsSummary::Status::kSingular;
+      sum.message = "the static tangent could not be factorized";
+      return sum;
+    }
+    const VectorXd dx = slu.solve(-r);
+    disc_static->retract(st, dx);
+    ++sum.iterations;
+  }
+}
+
+BeamDynamics::BeamDynamics(const rod::RodModel& model, const DynamicsOptions& options)
+    : impl_(std::make_unique<Impl>(model, options)) {}
+BeamDynamics::~BeamDynamics() = default;
+
+BeamDynamicsSummary BeamDynamics::initialize(const rod::Loads& loads) {
+  Impl& d = *impl_;
+  d.set_loads(loads);
+  d.F_c = rod::characteristic_force_N(d.model_static, loads);
+  d.t = 0.0;
+  d.st = d.disc_static->reference_state();
+  const Summary s = solve(d.model_static, loads, d.fe, d.st);
+  if (!s.converged()) d.st = d.disc_static->reference_state();
+  d.st.load_factor = 1.0;
+  BeamDynamicsSummary sum = d.newton_static();
+  sum.iterations += s.iterations;
+  if (!sum.converged()) return sum;
+  d.v.setZero();
+  d.vd.setZero();
+  d.a.setZero();
+  d.x_last = VectorXd::Zero(d.free_dofs);
+  if (d.kv) d.kv->reset(d.st);
+  return sum;
+}
+
+BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
+  Impl& d = *impl_;
+  d.set_loads(loads);
+  BeamDynamicsSummary sum;
+  // Predictor: a_{n+1} = a_n.
+  VectorXd x = d.v + d.h * 0.5 * d.a;
+  // Chord (simplified Newton) iterations with the last factorization, kept across steps; a
+  // fresh Jacobian when one contracts the residual by less than kChordContraction, after
+  // kMaxChordSteps chord steps, or always without reuse_factorization.
+  constexpr double kChordContraction = 0.25;
+  constexpr int kMaxChordSteps = 6;
+  bool fresh = !d.factored || !d.opt.reuse_factorization;
+  int chord_steps = 0;
+  double r_prev = std::numeric_limits<double>::infinity();
+  while (true) {
+    const VectorXd r = d.evaluate(x, fresh ? &d.K : nullptr);
+    if (d.within_tolerance(r, &sum.residual)) break;
+    if (!r.allFinite()) {
+      sum.status = BeamDynamicsSummary::Status::kNonFinite;
+      sum.message = "the residual is not finite";
+      return sum;
+    }
+    if (!fresh && (sum.residual > kChordContraction * r_prev || chord_steps >= kMaxChordSteps)) {
+      fresh = true;  // the same x again, with its Jacobian
+      continue;
+    }
+    if (sum.iterations == d.opt.max_iterations) {
+      sum.status = BeamDynamicsSummary::Status::kMaxIterations;
+      sum.message = fmt::format("no convergence in {} Newton iterations (scaled residual {:.3e})",
+                                d.opt.max_iterations, sum.residual);
+      return sum;
+    }
+    if (fresh) {
+      d.factored = d.lu.factorize(d.K);
+      if (!d.factored) {
+        sum.status = BeamDynamicsSummary::Status::kSingular;
+        sum.message = "the iteration matrix could not be factorized";
+        return sum;
+      }
+      chord_steps = 0;
+    } else {
+      ++chord_steps;
+    }
+    VectorXd dx = -r;
+    if (!d.lu.solve(dx) || !dx.allFinite()) {
+      sum.status = BeamDynamicsSummary::Status::kNonFinite;
+      sum.message = "the Newton step is not finite";
+      return sum;
+    }
+    x += dx;
+    ++sum.iterations;
+    r_prev = sum.residual;
+    fresh = !d.opt.reuse_factorization;
+  }
+  sum.status = BeamDynamicsSummary::Status::kConverged;
+  if (d.kv) d.kv->advance(d.trial);
+  d.st = d.trial;
+  d.v = d.v1;
+  d.vd = d.vd1;
+  d.a = d.a1;
+  d.x_last = x;
+  d.t += d.h;
+  return sum;
+}
+
+VectorXd BeamDynamics::step_residual(const rod::Loads& loads, const VectorXd& x, SpMat* Jac) {
+  Impl& d = *impl_;
+  d.set_loads(loads);
+  VectorXd r = d.evaluate(x, Jac);
+  for (int i = 0; i < d.free_dofs; ++i) {
+    const double unit = i % 6 >= 3 ? d.F_c * d.L : d.F_c;
+    r[i] /= unit;
+    if (Jac) Jac->row(i) /= unit;
+  }
+  return r;
+}
+
+double BeamDynamics::time_s() const { return impl_->t; }
+double BeamDynamics::time_step_s() const { return impl_->h; }
+const State& BeamDynamics::state() const { return impl_->st; }
+const Discretization& BeamDynamics::discretization() const { return *impl_->disc_static; }
+const VectorXd& BeamDynamics::velocities() const { return impl_->v; }
+Vector3d BeamDynamics::tip_position_W_m() const { return impl_->st.p_W_m.back(); }
+Matrix3d BeamDynamics::tip_rotation_W() const { return impl_->st.q_WB.back().toRotationMatrix(); }
+
+double BeamDynamics::kinetic_energy_J() const {
+  const Impl& d = *impl_;
+  const int order = d.disc_static->order(), n = order + 1;
+  double T = 0.0;
+  for (int e = 0; e < d.disc_static->element_count(); ++e) {
+    for (int i = 0; i < n; ++i) {
+      const int ni = e * order + i;
+      if (ni == 0) continue;
+      for (int j = 0; j < n; ++j) {
+        const int nj = e * order + j;
+        if (nj == 0) continue;
+        T += 0.5 * d.elem_mass[(static_cast<std::size_t>(e) * n + i) * n + j] *
+             d.v.segment<3>(6 * (ni - 1)).dot(d.v.segment<3>(6 * (nj - 1)));
+      }
+    }
+  }
+  for (int k = 1; k < d.nodes; ++k) {
+    const Vector3d W = d.v.segment<3>(6 * (k - 1) + 3);
+    T += 0.5 * W.dot(d.node_J[k].cwiseProduct(W));
+  }
+  return T + 0.5 * d.opt.tip_mass_kg * d.v.segment<3>(d.free_dofs - 6).squaredNorm();
+}
+
+double BeamDynamics::potential_energy_J() const {
+  const Impl& d = *impl_;
+  const rod::RodModel& m = d.model_static;
+  // Strain energy with the element's own quadrature (its gradient is the element residual).
+  std::vector<double> xi, w;
+  const int points = d.fe.order + (d.fe.integration == Integration::kFull ? 1 : 0);
+  gauss_rule(points, xi, w);
+  const std::vector<PointStrain> eps = d.disc_static->strains(d.st);
+  double U = 0.0;
+  for (std::size_t k = 0; k < eps.size(); ++k) {
+    const int e = static_cast<int>(k / xi.size());
+    const double wj = w[k % xi.size()] * 0.5 * d.disc_static->element_length_m(e);
+    const double s = eps[k].s_m;
+    const Vector3d de = eps[k].nu_B - Vector3d::UnitZ();
+    const Vector3d dom = eps[k].omega_B - m.reference_curvature_at(s);
+    U += wj * 0.5 *
+         (de.dot(m.shear_extension_stiffness(s).cwiseProduct(de)) +
+          dom.dot(m.bending_torsion_stiffness(s).cwiseProduct(dom)));
+  }
+  for (int k = 0; k < d.nodes; ++k) U -= d.node_mass[k] * d.g_W.dot(d.st.p_W_m[k]);
+  U -= (d.F_tip + d.opt.tip_mass_kg * d.g_W).dot(d.st.p_W_m.back());
+  const std::vector<double> l = d.disc_static->string_lengths(d.st);
+  for (int i = 0; i < d.n_act; ++i) {
+    U += m.actuators[i].count * d.tensions[i] * (l[i] - m.actuators[i].rest_length_m);
+  }
+  return U;
+}
+
+std::vector<double> BeamDynamics::tensions_N() const { return impl_->tensions; }
+
+std::vector<double> BeamDynamics::elongations_m() const {
+  const Impl& d = *impl_;
+  std::vector<double> l = d.disc_static->string_lengths(d.st);
+  for (int i = 0; i < d.n_act; ++i) l[i] -= d.model.actuators[i].rest_length_m;
+  return l;
+}
+
+}  // namespace tcasim::beam_fe

@@ -1,0 +1,145 @@
+#pragma once
+/// Dynamics of the Simo-Reissner beam elements (beam_fe.hpp): the semi-discrete equations
+/// of motion integrated by the generalized-alpha method on the Lie group (R^3 x SO(3))^nodes
+/// ([Bruls2012]); docs/conventions.md "Beam FE dynamics".
+///
+/// Unknowns per free node: the world-frame velocity v_a = dp_a/dt and the body angular velocity
+/// W_a (R_a' = R_a hat(W_a)). Equations of motion at t_{n+1}:
+///   M vdot + (W_a x J_a W_a)_a + f_int(q, strain rates) - f_ext(q) = 0,
+/// M the consistent translational mass int rho A N_a N_b ds (plus the tip mass at the tip
+/// node), J_a the rotational inertia of node a by nodal quadrature (int N_a ds rho J, Simpson's
+/// rule for quadratic elements), f_int the static element forces (strings as an internal
+/// potential) with Kelvin-Voigt stresses B_se e_t, B_bt omega_t at every quadrature point.
+/// Time step: the Newton unknown is the increment x = log(q_n^-1 q_{n+1}) / dt (a vector), with
+/// q_{n+1} = q_n exp(dt x) and the Newmark and alpha relations giving a_{n+1}, v_{n+1} and
+/// vdot_{n+1} as affine functions of x; the Jacobian is exact (step_residual for tests).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "beam_fe/beam_fe.hpp"
+#include "rod/loads.hpp"
+#include "rod/model.hpp"
+
+namespace tcasim::beam_fe {
+
+/// Options of the FE dynamics (validated by BeamDynamics' constructor: InputError naming the
+/// field).
+struct DynamicsOptions {
+  int elements = 16;  ///< elements (>= 1)
+  int order = 2;      ///< Lagrange order, 1 or 2
+  Integration integration = Integration::kReduced;
+  double dt_s = 2e-3;  ///< time step [s], > 0
+  /// Spectral radius at infinite frequency of the generalized-alpha method, in [0, 1]:
+  /// 1 is non-dissipative (the trapezoidal rule on linear problems), smaller values damp
+  /// the high frequencies more (0: annihilated in one step).
+  double rho_inf = 0.9;
+  /// Converged when every force row |r_i| <= tolerance F_c and every moment row
+  /// |r_i| <= tolerance F_c L (F_c = rod::characteristic_force_N of the loads at t = 0),
+  /// plus the round-off floor of the rows (Discretization::round_off_floor).
+  double tolerance = 1e-10;
+  int max_iterations = 30;  ///< Newton iterations per time step
+  /// Reuse the last factorization of the step Jacobian (chord iterations, across steps) while
+  /// it contracts the residual by 4 per iteration; false: a fresh Jacobian every iteration.
+  bool reuse_factorization = true;
+  /// Kelvin-Voigt viscosity eta [Pa s] (as cosserat::DynamicsOptions::viscosity_Pa_s).
+  double viscosity_Pa_s = 0.0;
+  /// Point mass at the tip [kg] (inertia and weight; replaces the model's tip_mass_kg).
+  double tip_mass_kg = 0.0;
+};
+
+/// Outcome of the static initialization or of one time step.
+struct BeamDynamicsSummary {
+  enum class Status {
+    kConverged,      ///< the residual is within DynamicsOptions::tolerance
+    kMaxIterations,  ///< max_iterations Newton iterations without convergence
+    kSingular,       ///< the iteration matrix could not be factorized
+    kNonFinite,      ///< the residual or the Newton step is not finite
+    kNotRun,
+  };
+  Status status = Status::kNotRun;
+  int iterations = 0;
+  double residual = 0.0;  ///< max scaled residual row (force rows / F_c, moment / (F_c L))
+  std::string message;
+  bool converged() const { return status == Status::kConverged; }
+};
+
+const char* to_string(BeamDynamicsSummary::Status s);
+
+/// Generalized-alpha parameters of rho_inf ([Bruls2012] / Chung-Hulbert):
+/// alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 + alpha_f - alpha_m,
+/// beta = (gamma + 1/2)^2 / 4.
+struct AlphaParameters {
+  double alpha_m, alpha_f, gamma, beta;
+};
+AlphaParameters alpha_parameters(double rho_inf);
+
+/// FE dynamics of one model: static initialization at t = 0, then fixed time steps. Holds a
+/// reference to the model (it must outlive the solver). Tension drives only (a TCA drive and a
+/// tip constraint are refused with DomainError, as in cosserat::RodDynamics).
+class BeamDynamics {
+ public:
+  BeamDynamics(const rod::RodModel& model, const DynamicsOptions& options);
+  ~BeamDynamics();
+  BeamDynamics(const BeamDynamics&) = delete;
+  BeamDynamics& operator=(const BeamDynamics&) = delete;
+
+  /// Static equilibrium under `loads` (at rest; beam_fe::solve, then Newton on this solver's
+  /// residual); time is set to 0.
+  BeamDynamicsSummary initialize(const rod::Loads& loads);
+  /// Advances by dt_s under `loads` (the loads at the new time t + dt).
+  BeamDynamicsSummary step(const rod::Loads& loads);
+
+  double time_s() const;
+  double time_step_s() const;  ///< DynamicsOptions::dt_s
+  const State& state() const;  ///< nodal configuration of the last converged step
+  const Discretization& discretization() const;
+  /// Per free node (6 each): velocities (v_a world, W_a body) of the last converged step.
+  const Eigen::VectorXd& velocities() const;
+  Eigen::Vector3d tip_position_W_m() const;
+  Eigen::Matrix3d tip_rotation_W() const;
+  /// Kinetic energy 1/2 v.M v + 1/2 sum W_a.J_a W_a + 1/2 m_tip |v_tip|^2 [J].
+  double kinetic_energy_J() const;
+  /// Potential energy of the current loads taken as constant [J]: strain energy (the element
+  /// quadrature), minus the work potential of gravity (consistent nodal loads) and of the tip
+  /// force (with the tip mass's weight), plus c_i T_i delta_i of the strings (tip moments are
+  /// not included: not conservative in 3-D). Its gradient is the static residual.
+  double potential_energy_J() const;
+  std::vector<double> tensions_N() const;
+  std::vector<double> elongations_m() const;
+
+  /// For tests: the step residual at increment x (6 per free node) from the last converged
+  /// step under `loads`, scaled as the convergence test; with J, its exact Jacobian dr/dx.
+  Eigen::VectorXd step_residual(const rod::Loads& loads, const Eigen::VectorXd& x,
+                                Eigen::SparseMatrix<double>* J = nullptr);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The loads at time t [s] (as cosserat::LoadsAt).
+using LoadsAt = std::function<rod::Loads(double t_s)>;
+
+/// Outcome of a trajectory run.
+struct TrajectorySummary {
+  bool ok = false;           ///< every step (and the static state) converged
+  long long steps_done = 0;  ///< converged time steps
+  std::string message;       ///< why it stopped early (empty when ok)
+};
+
+/// Runs `steps` time steps from the static state under loads_at(0) and writes the trajectory
+/// CSV of docs/scenario-format.md "Trajectory file" (the columns of `tcasim simulate`): the
+/// header, the row of t = 0, then every `output_every`-th step and the last one; tension drives
+/// have no temperature (nan). A failed step (or static state) ends the rows with a line
+/// "# ..." saying why. `after_row` (optional) is called after each written row.
+TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model,
+                                   const LoadsAt& loads_at, long long steps, long long output_every,
+                                   std::ostream& os,
+                                   const std::function<void(const BeamDynamics&)>& after_row = {});
+
+}  // namespace tcasim::beam_fe

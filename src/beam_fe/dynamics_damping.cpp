@@ -1,0 +1,230 @@
+// Kelvin-Voigt damping of the FE dynamics: the strain-rate history per quadrature point and the
+// nodal forces of a fixed stress (beam_fe/dynamics_damping.hpp).
+//
+// The forces of a fixed stress sigma follow the chain of the element kernel (element.cpp):
+//   increments theta -> u = (y_a, psi_a) -> g = (y', psi, psi') -> eps = (exp(psi)^T y',
+//   Jr(psi) psi'), r = B^T G^T F^T sigma; the tangent is that of the element with the
+// constitutive tangent C = 0: B^T G^T S G B (S = sum_k sigma_k d2 eps_k / dg2), plus the second
+// derivatives of u(theta) contracted with the gradient, plus hat(r_rot)/2 per node. Here the
+// second derivatives of eps(g) come from nested dual numbers over the 9 components of g (the
+// element kernel writes them in closed form); the node map's are the kernel's formulas.
+#include "beam_fe/dynamics_damping.hpp"
+
+#include <cmath>
+
+#include "beam_fe/dynamics_internal.hpp"
+#include "common/dual.hpp"
+#include "common/lie_series.hpp"
+#include "common/so3.hpp"
+
+namespace tcasim::beam_fe::damping {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+using Matrix9d = Eigen::Matrix<double, 9, 9>;
+using Vector9d = Eigen::Matrix<double, 9, 1>;
+using dynamics_internal::gauss_rule;
+using dynamics_internal::shape;
+
+/// sigma . eps(g) as a nested dual over g: value, gradient (F^T sigma) and Hessian (S).
+void stress_work_jet(const Vector9d& g, const Vector6d& sigma, Vector9d& grad, Matrix9d& hess) {
+  using D1 = ad::Dual<double, 9>;
+  using D2 = ad::Dual<D1, 9>;
+  Eigen::Matrix<D2, 9, 1> x;
+  for (int i = 0; i < 9; ++i) {
+    x[i] = D2(g[i]);
+    x[i].v.d[i] = 1.0;
+    x[i].d[i] = D1(1.0);
+  }
+  const Eigen::Matrix<D2, 3, 1> yp = x.segment<3>(0), ps = x.segment<3>(3), pp = x.segment<3>(6);
+  const D2 t2 = ps.dot(ps);
+  const so3::Coefficients<D2> k = so3::coefficients(t2);
+  const Eigen::Matrix<D2, 3, 3> K = so3::hat(ps);
+  const Eigen::Matrix<D2, 3, 3> K2 = K * K;
+  Eigen::Matrix<D2, 3, 3> I = Eigen::Matrix<D2, 3, 3>::Identity();
+  // exp(psi)^T = I - a K + b K^2, Jr(psi) = I - b K + c K^2.
+  const Eigen::Matrix<D2, 3, 1> nu = (I - k.a * K + k.b * K2) * yp;
+  const Eigen::Matrix<D2, 3, 1> om = (I - k.b * K + k.c * K2) * pp;
+  D2 s(0.0);
+  for (int i = 0; i < 3; ++i) s = s + D2(sigma[i]) * nu[i] + D2(sigma[3 + i]) * om[i];
+  for (int i = 0; i < 9; ++i) {
+    grad[i] = s.d[i].v;
+    for (int j = 0; j < 9; ++j) hess(i, j) = s.d[i].d[j];
+  }
+}
+
+}  // namespace
+
+void add_fixed_stress_forces(const Discretization& disc, const State& state,
+                             const std::vector<Vector6d>& sigma, VectorXd& r,
+                             Eigen::SparseMatrix<double>* Kg) {
+  const int order = disc.order(), n = order + 1, nu = 6 * n;
+  const int ref = order == 1 ? 0 : 1;
+  std::vector<double> xi, w;
+  const std::size_t per_element = sigma.size() / static_cast<std::size_t>(disc.element_count());
+  gauss_rule(static_cast<int>(per_element), xi, w);
+  double N[3], dNxi[3];
+  for (int e = 0; e < disc.element_count(); ++e) {
+    const int first = e * order;
+    const double he = disc.element_length_m(e);
+    const Eigen::Quaterniond q_ref = state.q_WB[first + ref];
+    const Matrix3d R_ref = q_ref.toRotationMatrix();
+    std::vector<Vector3d> y(n), psi(n);
+    std::vector<Matrix3d> A(n, Matrix3d::Identity());
+    std::vector<std::array<Matrix3d, 3>> dA(n);
+    for (int a = 0; a < n; ++a) {
+      y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
+      psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
+      if (a == ref) continue;
+      // A = Jr^-1(psi) = I + K/2 + d K^2 and dA/dpsi_k (as element.cpp), d' from a dual.
+      ad::Dual<double, 1> t2(psi[a].squaredNorm());
+      t2.d[0] = 1.0;
+      const so3::Coefficients<ad::Dual<double, 1>> c = so3::coefficients(t2);
+      const Matrix3d Kp = so3::hat(psi[a]);
+      const Matrix3d K2 = Kp * Kp;
+      A[a] = Matrix3d::Identity() + 0.5 * Kp + c.d.v * K2;
+      for (int k = 0; k < 3; ++k) {
+        const Matrix3d Ek = so3::hat(Vector3d::Unit(k));
+        dA[a][k] = 0.5 * Ek + 2.0 * c.d.d[0] * psi[a][k] * K2 + c.d.v * (Ek * Kp + Kp * Ek);
+      }
+    }
+    VectorXd grad_u = VectorXd::Zero(nu);
+    MatrixXd hess_u = MatrixXd::Zero(nu, nu);
+    for (std::size_t gp = 0; gp < xi.size(); ++gp) {
+      shape(order, xi[gp], N, dNxi);
+      const double wj = w[gp] * 0.5 * he;
+      double dN[3];
+      for (int a = 0; a < n; ++a) dN[a] = dNxi[a] * 2.0 / he;
+      Eigen::Matrix<double, 9, Eigen::Dynamic> G =
+          Eigen::Matrix<double, 9, Eigen::Dynamic>::Zero(9, nu);
+      for (int a = 0; a < n; ++a) {
+        G.block<3, 3>(0, 3 * a) = dN[a] * Matrix3d::Identity();
+        G.block<3, 3>(3, 3 * n + 3 * a) = N[a] * Matrix3d::Identity();
+        G.block<3, 3>(6, 3 * n + 3 * a) = dN[a] * Matrix3d::Identity();
+      }
+      Vector9d g = Vector9d::Zero();
+      for (int a = 0; a < n; ++a) {
+        g.segment<3>(0) += dN[a] * y[a];
+        g.segment<3>(3) += N[a] * psi[a];
+        g.segment<3>(6) += dN[a] * psi[a];
+      }
+      Vector9d gg;
+      Matrix9d S;
+      stress_work_jet(g, sigma[static_cast<std::size_t>(e) * xi.size() + gp], gg, S);
+      grad_u += wj * G.transpose() * gg;
+      if (Kg) hess_u += wj * G.transpose() * S * G;
+    }
+    // B = du/dtheta (element.cpp).
+    MatrixXd B = MatrixXd::Zero(nu, nu);
+    const int phr = 6 * ref + 3, dr = 6 * ref;
+    for (int a = 0; a < n; ++a) {
+      if (a == ref) continue;
+      B.block<3, 3>(3 * a, 6 * a) = R_ref.transpose();
+      B.block<3, 3>(3 * a, dr) = -R_ref.transpose();
+      B.block<3, 3>(3 * a, phr) = so3::hat(y[a]);
+      B.block<3, 3>(3 * n + 3 * a, 6 * a + 3) = A[a];
+      B.block<3, 3>(3 * n + 3 * a, phr) = -A[a].transpose();
+    }
+    const VectorXd res = B.transpose() * grad_u;
+    const int base = 6 * first - 6;
+    for (int i = 0; i < nu; ++i)
+      if (base + i >= 0) r[base + i] += res[i];
+    if (!Kg) continue;
+    MatrixXd K = B.transpose() * hess_u * B;
+    for (int a = 0; a < n; ++a) {
+      if (a == ref) continue;
+      const Vector3d gy = grad_u.segment<3>(3 * a);
+      K.block<3, 3>(phr, phr) += 0.5 * (gy * y[a].transpose() + y[a] * gy.transpose()) -
+                                 gy.dot(y[a]) * Matrix3d::Identity();
+      const Matrix3d Hrd = so3::hat(gy) * R_ref.transpose();
+      K.block<3, 3>(phr, 6 * a) += Hrd;
+      K.block<3, 3>(phr, dr) -= Hrd;
+      K.block<3, 3>(6 * a, phr) += Hrd.transpose();
+      K.block<3, 3>(dr, phr) -= Hrd.transpose();
+      const Vector3d gp = grad_u.segment<3>(3 * n + 3 * a);
+      auto DA = [&](const Vector3d& v) {
+        return Matrix3d(v[0] * dA[a][0] + v[1] * dA[a][1] + v[2] * dA[a][2]);
+      };
+      Matrix3d Haa, Hrr, Har;
+      for (int j = 0; j < 3; ++j) {
+        const Vector3d ej = Vector3d::Unit(j);
+        Haa.col(j) = DA(A[a] * ej).transpose() * gp - 0.5 * (A[a].transpose() * gp).cross(ej);
+        Hrr.col(j) = DA(A[a].transpose() * ej) * gp + 0.5 * (A[a] * gp).cross(ej);
+        Har.col(j) = -DA(A[a].transpose() * ej).transpose() * gp;
+      }
+      const int pha = 6 * a + 3;
+      K.block<3, 3>(pha, pha) += Haa;
+      K.block<3, 3>(phr, phr) += Hrr;
+      K.block<3, 3>(pha, phr) += Har;
+      K.block<3, 3>(phr, pha) += Har.transpose();
+    }
+    for (int a = 0; a < n; ++a) {
+      K.block<3, 3>(6 * a + 3, 6 * a + 3) += 0.5 * so3::hat(Vector3d(res.segment<3>(6 * a + 3)));
+    }
+    for (int i = 0; i < nu; ++i) {
+      if (base + i < 0) continue;
+      for (int j = 0; j < nu; ++j)
+        if (base + j >= 0) Kg->coeffRef(base + i, base + j) += K(i, j);
+    }
+  }
+}
+
+StrainRateHistory::StrainRateHistory(const Discretization& disc, const rod::RodModel& model,
+                                     double eta, const AlphaParameters& ap, double dt_s)
+    : disc_(disc), ap_(ap), h_(dt_s), c_e_(ap.gamma / (ap.beta * dt_s)) {
+  // docs/conventions.md "Dynamics": B_se = diag(eta_s A, eta_s A, eta A),
+  // B_bt = diag(eta I_x, eta I_y, eta_s J), eta_s = eta / (2 (1 + poisson)); a uniform body.
+  const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
+  const rod::Section& s = model.section;
+  B_ << eta_s * s.area_m2, eta_s * s.area_m2, eta * s.area_m2, eta * s.I_x_m4, eta * s.I_y_m4,
+      eta_s * s.J_m4;
+  for (const PointStrain& p : disc.strains(disc.reference_state())) {
+    Vector6d e;
+    e << Vector3d::Zero(), model.reference_curvature_at(p.s_m);
+    eps_ref_.push_back(e);
+  }
+}
+
+std::vector<Vector6d> StrainRateHistory::strains(const State& state) const {
+  std::vector<Vector6d> out;
+  for (const PointStrain& p : disc_.strains(state)) {
+    Vector6d e;
+    e << p.nu_B - Vector3d::UnitZ(), p.omega_B;
+    out.push_back(e);
+  }
+  return out;
+}
+
+void StrainRateHistory::reset(const State& state) {
+  eps_ = strains(state);
+  eps_t_.assign(eps_.size(), Vector6d::Zero());
+  a_eps_.assign(eps_.size(), Vector6d::Zero());
+}
+
+void StrainRateHistory::add_history_forces(const State& trial, VectorXd& r,
+                                           Eigen::SparseMatrix<double>* K) const {
+  std::vector<Vector6d> sigma(eps_.size());
+  for (std::size_t k = 0; k < eps_.size(); ++k) {
+    const Vector6d hist = (1.0 - ap_.gamma / ap_.beta) * eps_t_[k] +
+                          h_ * (1.0 - ap_.gamma / (2.0 * ap_.beta)) * a_eps_[k];
+    sigma[k] = B_.cwiseProduct(c_e_ * (eps_ref_[k] - eps_[k]) + hist);
+  }
+  add_fixed_stress_forces(disc_, trial, sigma, r, K);
+}
+
+void StrainRateHistory::advance(const State& state) {
+  const std::vector<Vector6d> e1 = strains(state);
+  for (std::size_t k = 0; k < e1.size(); ++k) {
+    const Vector6d hist = (1.0 - ap_.gamma / ap_.beta) * eps_t_[k] +
+                          h_ * (1.0 - ap_.gamma / (2.0 * ap_.beta)) * a_eps_[k];
+    const Vector6d et1 = c_e_ * (e1[k] - eps_[k]) + hist;
+    a_eps_[k] = (et1 - eps_t_[k] - h_ * (1.0 - ap_.gamma) * a_eps_[k]) / (h_ * ap_.gamma);
+    eps_t_[k] = et1;
+    eps_[k] = e1[k];
+  }
+}
+
+}  // namespace tcasim::beam_fe::damping
