@@ -37,16 +37,40 @@ const char* to_string(DynamicsSummary::Status s) {
   return "unknown";
 }
 
-double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& o) {
-  const dynamics::SectionAt sec = dynamics::section_at(model, 0.0, o.viscosity_Pa_s);
-  const double a = o.alpha;
-  const double c0 = (1.5 + a) / (o.dt_s * (1.0 + a));
-  // A step turns EI w'''' = -rho A w_tt into w'''' ~ -(rho A / EI) c0^2 w, and the wave
+namespace {
+
+/// kappa of one section (spatial_growth_rate) for the BDF-alpha coefficient c0.
+double growth_rate_of(const dynamics::SectionAt& sec, double c0) {
+  // A step turns EI w = -rho A w_tt into w ~ -(rho A / EI) c0^2 w, and the wave
   // equations of extension, shear and torsion into u'' ~ (rho / stiffness) c0^2 u.
   const double EI = std::min(sec.K_bt.x(), sec.K_bt.y());
   double kappa = std::pow(sec.rho_A / EI, 0.25) * std::sqrt(c0);
   kappa = std::max(kappa, std::sqrt(sec.rho_A / sec.K_se.minCoeff()) * c0);
   kappa = std::max(kappa, std::sqrt(sec.rho_J.z() / sec.K_bt.z()) * c0);
+  return kappa;
+}
+
+}  // namespace
+
+double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& o) {
+  const double a = o.alpha;
+  const double c0 = (1.5 + a) / (o.dt_s * (1.0 + a));
+  double kappa = growth_rate_of(dynamics::section_at(model, 0.0, o.viscosity_Pa_s), c0);
+  if (model.uniform_body()) return kappa;
+  // A varying body: the largest rate at the ends and breakpoints (both sides) and at 8 points
+  // inside each piece (the rates vary smoothly there).
+  std::vector<double> knots = model.breakpoints();
+  knots.insert(knots.begin(), 0.0);
+  knots.push_back(model.length_m);
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    for (int j = 0; j <= 8; ++j) {
+      const double s = knots[k] + (knots[k + 1] - knots[k]) * j / 8.0;
+      for (const rod::Side side : {rod::Side::kLeft, rod::Side::kRight}) {
+        kappa = std::max(
+            kappa, growth_rate_of(dynamics::section_at(model, s, o.viscosity_Pa_s, side), c0));
+      }
+    }
+  }
   return kappa;
 }
 
@@ -66,28 +90,64 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   require(std::isfinite(o.tolerance) && o.tolerance > 0.0, "dynamics.tolerance", o.tolerance,
           "must be > 0");
   require(o.max_iterations >= 1, "dynamics.max_iterations", o.max_iterations, "must be >= 1");
-  require(std::isfinite(o.viscosity_Pa_s) && o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
-          o.viscosity_Pa_s, "must be >= 0");
-  require(std::isfinite(o.tip_mass_kg) && o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
-          o.tip_mass_kg, "must be >= 0");
+  if (o.viscosity_Pa_s) {
+    require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
+            *o.viscosity_Pa_s, "must be >= 0");
+  }
+  if (o.tip_mass_kg) {
+    require(std::isfinite(*o.tip_mass_kg) && *o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
+            *o.tip_mass_kg, "must be >= 0");
+  }
   require(std::isfinite(o.max_interval_growth) && o.max_interval_growth > 0.0,
           "dynamics.max_interval_growth", o.max_interval_growth, "must be > 0");
   if (model.tip_constraint) {
     throw DomainError("rod dynamics: a tip_constraint is not supported in dynamics yet");
   }
   n_act = static_cast<int>(model.actuators.size());
-  for (const auto& a : model.actuators) {
-    if (a.drive.type != rod::Drive::Type::kTension) {
-      throw DomainError("rod dynamics: actuator '" + a.name +
-                        "' has a TCA drive; dynamics supports tension drives only so far");
+  tca_slot.assign(n_act, -1);
+  segments.resize(n_act);
+  temperatures_K.resize(n_act);
+  for (int i = 0; i < n_act; ++i) {
+    const rod::Actuator& a = model.actuators[i];
+    if (a.drive.type == rod::Drive::Type::kTca) {
+      tca_slot[i] = n_tca++;
+      tca_actuator.push_back(i);
     }
     length_ratio.push_back(a.rest_length_m / model.length_m);
     count.push_back(static_cast<double>(a.count));
   }
-  D = kDelta + n_act;
-  N = o.steps;
+  if (n_tca > kMaxTcas) {
+    throw DomainError("rod dynamics: " + std::to_string(n_tca) + " TCA-driven actuators; at most " +
+                      std::to_string(kMaxTcas) + " are supported");
+  }
+  kT = kDelta + n_act;
+  D = kT + n_tca;
+  tip_mass_kg = o.tip_mass_kg.value_or(model.tip_mass_kg);
   L = model.length_m;
-  h = L / N;
+  uniform = dynamics::section_is_uniform(model, o.viscosity_Pa_s);
+  if (uniform) {
+    N = o.steps;
+    h = L / N;
+    s_grid.resize(N + 1);
+    for (int i = 0; i <= N; ++i) s_grid[i] = i * h;
+  } else {
+    // A node at every breakpoint; each piece between them in equal steps of at most L / N.
+    std::vector<double> knots = dynamics::grid_breakpoints(model, o.viscosity_Pa_s);
+    knots.insert(knots.begin(), 0.0);
+    knots.push_back(L);
+    s_grid.assign(1, 0.0);
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+      const double a = knots[k], b = knots[k + 1];
+      const int n = std::max(1, static_cast<int>(std::ceil((b - a) * o.steps / L * (1.0 - 1e-12))));
+      for (int j = 1; j < n; ++j) s_grid.push_back(a + (b - a) * j / n);
+      s_grid.push_back(b);
+    }
+    N = static_cast<int>(s_grid.size()) - 1;
+    h = L / o.steps;
+    require(o.intervals == 0 || N % o.intervals == 0, "dynamics.intervals", o.intervals,
+            "must be 0 (automatic) or divide the " + std::to_string(N) +
+                " steps of this body's grid (a node at each breakpoint of its profiles)");
+  }
   sec = dynamics::section_at(model, 0.0, o.viscosity_Pa_s);
   const double a = o.alpha, dt = o.dt_s;
   // [Till2019] BDF-alpha coefficients (their time-management code).
@@ -108,20 +168,41 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   } else {
     M = N;
     for (int m_try = 1; m_try <= N; ++m_try) {
-      if (N % m_try == 0 && (L / m_try) * kappa <= o.max_interval_growth) {
+      if (N % m_try != 0) continue;
+      double longest = L / m_try;
+      if (!uniform) {
+        longest = 0.0;
+        const int s_try = N / m_try;
+        for (int k = 0; k < m_try; ++k) {
+          longest = std::max(longest, s_grid[(k + 1) * s_try] - s_grid[k * s_try]);
+        }
+      }
+      if (longest * kappa <= o.max_interval_growth) {
         M = m_try;
         break;
       }
     }
   }
   S = N / M;
+  if (!uniform) {
+    // Stage slots 4 i + j at s_i + c_j h_i; the end stage and the tip take the left limit.
+    slot_sec.resize(slots());
+    for (int i = 0; i < N; ++i) {
+      const double hi = s_grid[i + 1] - s_grid[i];
+      for (int j = 0; j < 4; ++j) {
+        const rod::Side side = j == 3 ? rod::Side::kLeft : rod::Side::kRight;
+        const double s = j == 3 ? s_grid[i + 1] : s_grid[i] + kStageC[j] * hi;
+        slot_sec[4 * i + j] = dynamics::section_at(model, s, o.viscosity_Pa_s, side);
+      }
+    }
+    slot_sec[4 * N] = dynamics::section_at(model, L, o.viscosity_Pa_s, rod::Side::kLeft);
+  }
   dense = unknowns() <= kDenseUnknowns;
   const int n_slots = slots();
   hist.assign(n_slots, {});
   cur_t.assign(n_slots, {});
-  PointData rest;
-  rest.omega = sec.omega_star;
-  trial.assign(n_slots, rest);
+  trial.assign(n_slots, PointData{});
+  for (int i = 0; i < n_slots; ++i) trial[i].omega = section_of(i).omega_star;
   cur = prev = trial;
   grid.assign(N + 1, Eigen::VectorXd::Zero(D));
   grid_converged = grid;
@@ -132,7 +213,20 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
 void RodDynamics::Impl::set_loads(const rod::Loads& loads_in) {
   loads_in.validate(model);
   const rod::Loads loads = loads_in.applied(model);
-  for (int i = 0; i < n_act; ++i) cT[i] = count[i] * loads.actuators[i].tension_N;
+  for (int i = 0; i < n_act; ++i) {
+    if (tca_slot[i] >= 0) {
+      // TCA: the segments' temperatures (an electric drive's are the thermal states).
+      segments[i] = loads.actuators[i].segments;
+      if (model.actuators[i].drive.is_electric() && !temperatures_K[i].empty()) {
+        for (std::size_t k = 0; k < segments[i].size(); ++k) {
+          segments[i][k].temperature_K = temperatures_K[i][k];
+        }
+      }
+      cT[i] = 0.0;  // the tension is a state
+    } else {
+      cT[i] = count[i] * loads.actuators[i].tension_N;
+    }
+  }
   g_W = loads.gravity_W_m_s2;
   f_ext_W = sec.rho_A * g_W;
   F_tip_W = loads.tip_force_W_N;
@@ -151,7 +245,8 @@ void RodDynamics::Impl::set_scales() {
   scale.segment<3>(kM).setConstant(F_c * L);
   scale.segment<3>(kQ).setConstant(L * rate);
   scale.segment<3>(kW).setConstant(rate);
-  if (n_act > 0) scale.tail(n_act).setConstant(L);
+  if (n_act > 0) scale.segment(kDelta, n_act).setConstant(L);
+  if (n_tca > 0) scale.segment(kT, n_tca).setConstant(F_c);
 }
 RodDynamics::RodDynamics(const rod::RodModel& model, const DynamicsOptions& options)
     : impl_(std::make_unique<Impl>(model, options)) {}
@@ -159,6 +254,15 @@ RodDynamics::~RodDynamics() = default;
 
 DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   Impl& d = *impl_;
+  // Electric drives: the thermal states start at the loads' temperatures (the steady
+  // temperatures of the inputs at t = 0 for Loads::from_model).
+  for (int i = 0; i < d.n_act; ++i) {
+    d.temperatures_K[i].clear();
+    if (d.tca_slot[i] < 0 || !d.model.actuators[i].drive.is_electric()) continue;
+    for (const tca::Segment& sg : loads.actuators.at(i).segments) {
+      d.temperatures_K[i].push_back(sg.temperature_K);
+    }
+  }
   d.set_loads(loads);
   d.F_c = rod::characteristic_force_N(d.model, loads);
   d.c0_active = 0.0;
@@ -185,8 +289,13 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
         const rod::Routing& rt = d.model.actuators[i].routing;
         const Vec3 r = rt.r(0.0);
         const Vec3 qh = (e0 + Vec3::UnitZ() + om0.cross(r) + rt.dr(0.0)).normalized();
-        Nb += d.cT[i] * qh;
-        Mb += d.cT[i] * r.cross(qh);
+        double cTi = d.cT[i];
+        if (d.tca_slot[i] >= 0) {
+          y0[d.kT + d.tca_slot[i]] = sol.tensions_N[i];
+          cTi = d.count[i] * sol.tensions_N[i];
+        }
+        Nb += cTi * qh;
+        Mb += cTi * r.cross(qh);
       }
       y0.segment<3>(kN) = Nb;
       y0.segment<3>(kM) = Mb;
@@ -194,10 +303,11 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   }
   Eigen::VectorXd zz(d.unknowns());
   zz.head<6>() = y0.segment<6>(kN);
+  for (int j = 0; j < d.n_tca; ++j) zz[6 + j] = y0[d.kT + j];
   Eigen::VectorXd y = y0;
   for (int k = 0; k < d.M - 1; ++k) {
     if (!d.integrate_interval(k, y, nullptr)) break;
-    zz.segment(6 + k * d.D, d.D) = y;
+    zz.segment(d.n0() + k * d.D, d.D) = y;
   }
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) return sum;
@@ -213,6 +323,32 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
 
 DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   Impl& d = *impl_;
+  // Electric drives: each segment's temperature over [t, t + dt] (it does not depend on the
+  // mechanics, so it is advanced first, exactly where the law is linear in T, else by the
+  // trapezoidal rule; docs/conventions.md "TCAs in rod dynamics").
+  std::vector<std::vector<double>> T_old = d.temperatures_K;
+  for (int i = 0; i < d.n_act; ++i) {
+    if (d.temperatures_K[i].empty()) continue;
+    const rod::Drive& drive = d.model.actuators[i].drive;
+    for (std::size_t k = 0; k < d.temperatures_K[i].size(); ++k) {
+      const rod::ElectricSegment& es = drive.electric[k];
+      const bool linear = es.input != tca::ElectricInput::kVoltage ||
+                          es.thermal.resistance_temperature_coefficient_1_K == 0.0;
+      const tca::ThermalStep ts =
+          tca::thermal_step(es.thermal, es.input, es.value.right_limit(d.t),
+                            es.value.value(d.t + d.opt.dt_s), d.temperatures_K[i][k], d.opt.dt_s,
+                            linear ? tca::ThermalScheme::kExact : tca::ThermalScheme::kTrapezoidal);
+      if (!ts.converged) {
+        d.temperatures_K = T_old;
+        DynamicsSummary fail;
+        fail.status = DynamicsSummary::Status::kNonFinite;
+        fail.message = "the thermal step of actuator '" + d.model.actuators[i].name + "' segment " +
+                       std::to_string(k) + " failed: " + ts.message;
+        return fail;
+      }
+      d.temperatures_K[i][k] = ts.temperature_K;
+    }
+  }
   d.set_loads(loads);
   d.c0_active = d.c0;
   d.set_scales();
@@ -249,7 +385,10 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
         sum.message.clear();
       }
     }
-    if (!sum.converged()) return sum;
+    if (!sum.converged()) {
+      d.temperatures_K = T_old;
+      return sum;
+    }
   }
   for (int i = 0; i < d.slots(); ++i) {
     const PointData& x = d.trial[i];
@@ -274,6 +413,8 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
 
 double RodDynamics::time_s() const { return impl_->t; }
 int RodDynamics::intervals() const { return impl_->M; }
+int RodDynamics::steps() const { return impl_->N; }
+const std::vector<double>& RodDynamics::grid_s_m() const { return impl_->s_grid; }
 int RodDynamics::state_dimension() const { return impl_->D; }
 const std::vector<Eigen::VectorXd>& RodDynamics::grid_states() const {
   return impl_->grid_converged;

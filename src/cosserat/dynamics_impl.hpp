@@ -15,6 +15,7 @@
 #include "cosserat/dynamics.hpp"
 #include "cosserat/dynamics_section.hpp"
 #include "cosserat/string_system.hpp"
+#include "tca/tca.hpp"
 
 namespace tcasim::cosserat {
 
@@ -46,6 +47,8 @@ constexpr double kStageB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
 constexpr int kDenseUnknowns = 300;
 /// Chord iterations with one factorization before a fresh Jacobian is computed.
 constexpr int kStaleIterations = 6;
+/// Most TCA-driven actuators of one model (scratch arrays on the stack).
+constexpr int kMaxTcas = 64;
 
 }  // namespace dynamics
 
@@ -65,28 +68,50 @@ struct RodDynamics::Impl {
   /// Scaled residual at z; with `jacobian`, also the scaled Jacobian into J_.
   bool evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& r, bool jacobian);
   /// Tip residual rows (6) of the end state and, with G, their derivative (6 x D).
-  void tip_residual(const Eigen::VectorXd& y, Eigen::Ref<Eigen::VectorXd> r,
+  /// With TCA strings also their laws (n_tca rows); false where a TCA law has no state.
+  bool tip_residual(const Eigen::VectorXd& y, Eigen::Ref<Eigen::VectorXd> r,
                     Eigen::MatrixXd* G) const;
   /// Newton (chord) iterations from z.
   DynamicsSummary solve(Eigen::VectorXd& z);
   void set_loads(const rod::Loads& loads);
   void set_scales();
-  int unknowns() const { return 6 + (M - 1) * D; }
+  int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions
+  int unknowns() const { return n0() + (M - 1) * D; }
   int slots() const { return 4 * N + 1; }  // 4 stages per step, then the tip point
+  /// Body properties at stage slot `slot` (the tip point is slot 4 N).
+  const dynamics::SectionAt& section_of(int slot) const { return uniform ? sec : slot_sec[slot]; }
+  /// Length of RK4 step i [m].
+  double step_length(int i) const { return uniform ? h : s_grid[i + 1] - s_grid[i]; }
 
   const rod::RodModel& model;
   DynamicsOptions opt;
-  dynamics::SectionAt sec;  // uniform along s (dynamics::section_is_uniform)
+  dynamics::SectionAt sec;  // at s = 0 (everywhere when `uniform`); sets the scales
+  bool uniform = true;      // dynamics::section_is_uniform
+  /// Varying body: the properties at every stage slot (the end stage of a step and the tip
+  /// take the limit from the left at a jump).
+  std::vector<dynamics::SectionAt> slot_sec;
+  double tip_mass_kg = 0.0;  // options' or the model's
   int n_act = 0, D = 0, N = 0, M = 0, S = 0;
-  double L = 0.0, h = 0.0;
+  // TCA strings: their tensions are states T_j (constant along s) at kT + j, unknowns at the
+  // base, fixed by the TCA law at the tip; tca_actuator[j] is the actuator of T_j and
+  // tca_slot[i] the j of actuator i (-1: tension drive).
+  int n_tca = 0, kT = 0;
+  std::vector<int> tca_actuator, tca_slot;
+  std::vector<std::vector<tca::Segment>> segments;  // per actuator: the current temperatures
+  // Electric drives: per actuator and segment, the thermal state [K] advanced with the steps.
+  std::vector<std::vector<double>> temperatures_K;
+  double L = 0.0, h = 0.0;     // h = L / N (the step of a uniform body)
+  std::vector<double> s_grid;  // N + 1 grid points; s_grid[i] = i h on a uniform body
   // BDF-alpha: y_t(n+1) = c0 y(n+1) + c1 y(n) + c2 y(n-1) + d1 y_t(n) ([Till2019]).
   double c0 = 0.0, c1 = 0.0, c2 = 0.0, d1 = 0.0;
   double c0_active = 0.0;  // 0 for the static solve
   double t = 0.0;
   // Loads of the current solve.
-  internal::Vec3 f_ext_W = internal::Vec3::Zero(), F_tip_W = internal::Vec3::Zero();
+  internal::Vec3 f_ext_W = internal::Vec3::Zero();  // rho A g of `sec`
+  internal::Vec3 F_tip_W = internal::Vec3::Zero();
   internal::Vec3 M_tip_W = internal::Vec3::Zero(), g_W = internal::Vec3::Zero();
-  std::vector<double> cT;  // count * tension per actuator
+  std::vector<double> cT;       // count * tension per actuator (tension drives)
+  std::vector<double> cT_eval;  // rhs scratch: cT with the TCA tensions of the state
   std::vector<double> length_ratio, count;
   double F_c = 1.0;
   Eigen::VectorXd scale;  // per state component (D)

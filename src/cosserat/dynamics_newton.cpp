@@ -22,7 +22,8 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   const int n = unknowns();
   Eigen::VectorXd unknown_scale(n);
   unknown_scale.head<6>() = scale.segment<6>(kN);
-  for (int k = 1; k < M; ++k) unknown_scale.segment(6 + (k - 1) * D, D) = scale;
+  for (int j = 0; j < n_tca; ++j) unknown_scale[6 + j] = scale[kT + j];
+  for (int k = 1; k < M; ++k) unknown_scale.segment(n0() + (k - 1) * D, D) = scale;
   Eigen::VectorXd r(n), z_old = zz, dz = Eigen::VectorXd::Zero(n);
   double rn_old = HUGE_VAL, lambda = 1.0;
   bool need_fresh = !lu_valid || lu_c0 != c0_active;

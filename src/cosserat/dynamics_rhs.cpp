@@ -21,18 +21,24 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   const Vec3 Nb = y.segment<3>(kN), Mb = y.segment<3>(kM);
   const Vec3 q = y.segment<3>(kQ), w = y.segment<3>(kW);
   const PointRates& H = hist[slot];
+  const dynamics::SectionAt& sp = section_of(slot);
+  const Vec3 f_W = sp.rho_A * g_W;
   PointData& X = trial[slot];
   const double c = c0_active;
   // Effective stiffness of the step: K + c0 B (Kelvin-Voigt, docs/conventions.md).
-  const Vec3 Kt_se = sec.K_se + c * sec.B_se, Kt_bt = sec.K_bt + c * sec.B_bt;
+  const Vec3 Kt_se = sp.K_se + c * sp.B_se, Kt_bt = sp.K_bt + c * sp.B_bt;
   const Vec3 Kt_se_inv = Kt_se.cwiseInverse(), Kt_bt_inv = Kt_bt.cwiseInverse();
   // Section constitutive law solved for the strains xi = (e, omega):
   //   K_se e + B_se (c0 e + e_h) + sum c_i T_i qh_i = N,
   //   K_bt (omega - omega*) + B_bt (c0 omega + omega_h) + sum c_i T_i r_i x qh_i = M.
-  const Vec3 bN = Nb - sec.B_se.cwiseProduct(H.e);
-  const Vec3 bM = Mb + sec.K_bt.cwiseProduct(sec.omega_star) - sec.B_bt.cwiseProduct(H.omega);
+  const Vec3 bN = Nb - sp.B_se.cwiseProduct(H.e);
+  const Vec3 bM = Mb + sp.K_bt.cwiseProduct(sp.omega_star) - sp.B_bt.cwiseProduct(H.omega);
+  // count times tension per actuator: prescribed, or the TCA tension state T_j of y.
+  std::vector<double>& cTl = cT_eval;
+  cTl = cT;
+  for (int j = 0; j < n_tca; ++j) cTl[tca_actuator[j]] = count[tca_actuator[j]] * y[kT + j];
   bool strings = false;
-  for (int i = 0; i < n_act; ++i) strings = strings || cT[i] != 0.0;
+  for (int i = 0; i < n_act; ++i) strings = strings || cTl[i] != 0.0;
   Vec3 e, om;
   Mat6 Z;  // d xi / d (N, M)
   if (!strings) {
@@ -53,16 +59,16 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
       Vec3 gM = Kt_bt.cwiseProduct(om) - bM;
       double load = force_scale;
       for (int i = 0; i < n_act; ++i) {
-        if (cT[i] == 0.0) continue;
+        if (cTl[i] == 0.0) continue;
         const rod::Routing& rt = model.actuators[i].routing;
         const Vec3 r = rt.r(s), dr = rt.dr(s);
         const Vec3 qi = e + Vec3::UnitZ() + om.cross(r) + dr;
         const double qn = qi.norm();
         const Vec3 qh = qi / qn;
-        gN += cT[i] * qh;
-        gM += cT[i] * r.cross(qh);
-        sys.add(r, cT[i] / qn, qh);
-        load += std::abs(cT[i]);
+        gN += cTl[i] * qh;
+        gM += cTl[i] * r.cross(qh);
+        sys.add(r, cTl[i] / qn, qh);
+        load += std::abs(cTl[i]);
       }
       sys.factor();
       Vec6 dx;
@@ -90,15 +96,15 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   X.p = y.segment<3>(kP);
   const Vec3 q_t = c * q + H.q, w_t = c * w + H.w;
   const Vec3 e_t = c * e + H.e, om_t = c * om + H.omega;
-  const Vec3 Jw = sec.rho_J.cwiseProduct(w);
+  const Vec3 Jw = sp.rho_J.cwiseProduct(w);
   // [Till2019] (body frame): p' = R nu, R' = R hat(omega),
   //   N' = -omega x N + rho A (w x q + q_t) - R^T f_ext,
   //   M' = -omega x M - nu x N + w x rho J w + rho J w_t,
   //   q' = nu_t - omega x q + w x nu,  w' = omega_t - omega x w.
   dy.segment<3>(kP) = R * nu;
   Eigen::Map<Mat3>(dy.data() + kR) = R * hat(om);
-  dy.segment<3>(kN) = -om.cross(Nb) + sec.rho_A * (w.cross(q) + q_t) - R.transpose() * f_ext_W;
-  dy.segment<3>(kM) = -om.cross(Mb) - nu.cross(Nb) + w.cross(Jw) + sec.rho_J.cwiseProduct(w_t);
+  dy.segment<3>(kN) = -om.cross(Nb) + sp.rho_A * (w.cross(q) + q_t) - R.transpose() * f_W;
+  dy.segment<3>(kM) = -om.cross(Mb) - nu.cross(Nb) + w.cross(Jw) + sp.rho_J.cwiseProduct(w_t);
   dy.segment<3>(kQ) = e_t - om.cross(q) + w.cross(nu);
   dy.segment<3>(kW) = om_t - om.cross(w);
   for (int i = 0; i < n_act; ++i) {
@@ -106,6 +112,7 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
     const Vec3 qi = nu + om.cross(rt.r(s)) + rt.dr(s);
     dy[kDelta + i] = qi.norm() - length_ratio[i];
   }
+  if (n_tca > 0) dy.segment(kT, n_tca).setZero();  // T_j' = 0: one tension along the string
   if (!A) return true;
   // Jacobian: direct part (xi fixed) plus df/dxi Z on the (N, M) columns.
   Eigen::MatrixXd& Aj = *A;
@@ -116,16 +123,16 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
     for (int i = 0; i < 3; ++i) {
       Aj(kP + i, kR + 3 * j + i) = nu[j];                                         // d(R nu)/dR_ij
       for (int k = 0; k < 3; ++k) Aj(kR + 3 * k + i, kR + 3 * j + i) = Om(j, k);  // R hat(om)
-      Aj(kN + j, kR + 3 * j + i) = -f_ext_W[i];                                   // -R^T f
+      Aj(kN + j, kR + 3 * j + i) = -f_W[i];                                       // -R^T f
     }
   }
   Aj.block<3, 3>(kN, kN) = -Om;
-  Aj.block<3, 3>(kN, kQ) = sec.rho_A * (hat(w) + c * I);
-  Aj.block<3, 3>(kN, kW) = -sec.rho_A * hat(q);
+  Aj.block<3, 3>(kN, kQ) = sp.rho_A * (hat(w) + c * I);
+  Aj.block<3, 3>(kN, kW) = -sp.rho_A * hat(q);
   Aj.block<3, 3>(kM, kM) = -Om;
   Aj.block<3, 3>(kM, kN) = -hat(nu);
   Aj.block<3, 3>(kM, kW) =
-      hat(w) * sec.rho_J.asDiagonal() - hat(Jw) + c * Mat3(sec.rho_J.asDiagonal());
+      hat(w) * sp.rho_J.asDiagonal() - hat(Jw) + c * Mat3(sp.rho_J.asDiagonal());
   Aj.block<3, 3>(kQ, kQ) = -Om;
   Aj.block<3, 3>(kQ, kW) = -hat(nu);
   Aj.block<3, 3>(kW, kW) = -Om;
@@ -147,6 +154,17 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
     const Vec3 qh = qi.normalized();
     Fx.block<1, 3>(kDelta + i, 0) = qh.transpose();
     Fx.block<1, 3>(kDelta + i, 3) = r.cross(qh).transpose();
+  }
+  // TCA tensions: f depends on T_j only through the strains, d xi / d T_j = -Z c_i (qh_i,
+  // r_i x qh_i) from the constitutive law.
+  for (int j = 0; j < n_tca; ++j) {
+    const int i = tca_actuator[j];
+    const rod::Routing& rt = model.actuators[i].routing;
+    const Vec3 r = rt.r(s);
+    const Vec3 qh = (nu + om.cross(r) + rt.dr(s)).normalized();
+    Vec6 g;
+    g << qh, r.cross(qh);
+    Aj.col(kT + j) += Fx * (Z * (-count[i] * g));
   }
   Aj.middleCols<6>(kN) += Fx * Z;
   return true;
