@@ -14,6 +14,7 @@
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/units.hpp"
 #include "cosserat/dynamics.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
@@ -37,9 +38,9 @@ void write_vtk_frame(const rod::RodModel& model, const cosserat::RodDynamics& dy
   r.method = "cosserat";
   r.converged = true;
   const auto& grid = dyn.grid_states();
-  const int n = static_cast<int>(grid.size()) - 1;
-  for (int i = 0; i <= n; ++i) {
-    r.centerline_s_m.push_back(model.length_m * i / n);
+  const auto& grid_s = dyn.grid_s_m();
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    r.centerline_s_m.push_back(grid_s[i]);
     r.centerline_p_W_m.push_back(grid[i].head<3>());
     r.centerline_R_WB.push_back(Eigen::Map<const Eigen::Matrix3d>(grid[i].data() + 3));
   }
@@ -83,9 +84,13 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--steps", flags->steps,
                   "RK4 steps along s (default: enough for the time step, at least 20)");
   cmd->add_option("--output-every", flags->output_every, "write every K-th time step (default 1)");
-  cmd->add_option("--viscosity-Pa-s", flags->viscosity,
-                  "Kelvin-Voigt viscosity of the body [Pa s] (default 0)");
-  cmd->add_option("--tip-mass-kg", flags->tip_mass, "point mass at the tip [kg] (default 0)");
+  auto* viscosity_flag = cmd->add_option(
+      "--viscosity-Pa-s", flags->viscosity,
+      "Kelvin-Voigt viscosity of the body [Pa s], constant along s (default: the scenario's "
+      "body.material.viscosity_Pa_s)");
+  auto* tip_mass_flag =
+      cmd->add_option("--tip-mass-kg", flags->tip_mass,
+                      "point mass at the tip [kg] (default: the scenario's tip_mass_kg)");
   cmd->add_option("--max-iterations", flags->max_iterations,
                   "Newton iterations per time step (default 30)");
   cmd->add_flag("--release-tip-load", flags->release_tip_load,
@@ -94,7 +99,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--out", flags->out, "trajectory CSV file")->required();
   cmd->add_option("--vtk-series", flags->vtk_dir,
                   "also write DIR/trajectory.pvd with one .vtp per output time (ParaView)");
-  cmd->callback([flags] {
+  cmd->callback([flags, viscosity_flag, tip_mass_flag] {
     const Flags& f = *flags;
     require(f.method == "cosserat", "--method", f.method,
             "must be cosserat: the FE dynamics is not available yet");
@@ -116,8 +121,9 @@ void add_simulate_command(CLI::App& app) {
     o.dt_s = f.dt_s;
     o.alpha = f.alpha;
     o.steps = f.steps != 0 ? f.steps : cosserat::recommended_steps(model, o);
-    o.viscosity_Pa_s = f.viscosity;
-    o.tip_mass_kg = f.tip_mass;
+    // The flags override the scenario's keys only when given.
+    if (viscosity_flag->count() > 0) o.viscosity_Pa_s = f.viscosity;
+    if (tip_mass_flag->count() > 0) o.tip_mass_kg = f.tip_mass;
     require_count(f.max_iterations, "--max-iterations", 1, 1000);
     o.max_iterations = f.max_iterations;
     std::unique_ptr<cosserat::RodDynamics> dyn_ptr;
@@ -128,10 +134,12 @@ void add_simulate_command(CLI::App& app) {
       throw;
     }
     cosserat::RodDynamics& dyn = *dyn_ptr;
-    // The loads over time: the scenario's own (time profiles arrive with the thermal model).
+    // The loads over time: the scenario's time profiles (tensions, temperatures, tip wrench)
+    // at t; the static state at t = 0 takes them at t = 0 (docs/scenario-format.md "Time
+    // profiles"). An electric drive's temperatures are the solver's thermal states.
     const bool release = f.release_tip_load;
     const cosserat::LoadsAt loads_at = [&model, release](double t) {
-      rod::Loads l = rod::Loads::from_model(model);
+      rod::Loads l = t > 0.0 ? rod::Loads::at_time(model, t) : rod::Loads::from_model(model);
       if (release && t > 0.0) {
         l.tip_force_W_N.setZero();
         l.tip_moment_W_Nm.setZero();
@@ -142,9 +150,17 @@ void add_simulate_command(CLI::App& app) {
     Output out(f.out);
     std::ostream& os = out.stream();
     os << "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J";
+    // Temperature columns: one per actuator, or one per segment of a segmented TCA
+    // (<name>_<k>_temperature_degC, k = 0, 1, ... base to tip as in `segments`).
     for (const auto& a : model.actuators) {
-      os << ',' << a.name << "_tension_N," << a.name << "_elongation_m," << a.name
-         << "_temperature_degC";
+      os << ',' << a.name << "_tension_N," << a.name << "_elongation_m";
+      if (a.drive.type == rod::Drive::Type::kTca && a.drive.segmented) {
+        for (std::size_t k = 0; k < a.drive.segments.size(); ++k) {
+          os << ',' << a.name << '_' << k << "_temperature_degC";
+        }
+      } else {
+        os << ',' << a.name << "_temperature_degC";
+      }
     }
     os << '\n';
     auto write_row = [&] {
@@ -152,8 +168,11 @@ void add_simulate_command(CLI::App& app) {
       os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", dyn.time_s(), p.x(), p.y(), p.z(),
                         dyn.kinetic_energy_J());
       const std::vector<double> t = dyn.tensions_N(), e = dyn.elongations_m();
+      const std::vector<std::vector<double>> T = dyn.segment_temperatures_K();
       for (std::size_t i = 0; i < t.size(); ++i) {
-        os << fmt::format(",{:.12e},{:.12e},nan", t[i], e[i]);  // tension drives: no temperature
+        os << fmt::format(",{:.12e},{:.12e}", t[i], e[i]);
+        if (T[i].empty()) os << ",nan";  // tension drive: no temperature
+        for (const double T_K : T[i]) os << fmt::format(",{:.9f}", units::K_to_degC(T_K));
       }
       os << '\n';
     };

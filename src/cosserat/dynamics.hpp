@@ -6,11 +6,14 @@
 ///
 /// State per point (dimension 24 + n_actuators), body-frame quantities in B, SI:
 ///   y = ( p_W [0,3), R_WB [3,12) column-major, N_B [12,15), M_B [15,18), q_B [18,21),
-///         w_B [21,24), delta_i [24, 24 + n) )
+///         w_B [21,24), delta_i [24, 24 + n), T_j [24 + n, 24 + n + n_tca) )
 /// with N, M the internal force and moment of the section including the strings' tensions
 /// (N = n + sum c_i T_i qh_i, M = m + sum c_i T_i r_i x qh_i), q and w the linear and
-/// angular velocity, delta_i the string elongations.
-/// Multiple shooting: M intervals of S RK4 steps each (N = M S steps of h = L / N); unknowns
+/// angular velocity, delta_i the string elongations, T_j the tension of one string of the
+/// j-th TCA-driven actuator (constant along s; none for tension drives).
+/// Multiple shooting: M intervals of S RK4 steps each (N = M S steps of h = L / N on a uniform
+/// body; a body whose properties vary along s gets a grid node at every breakpoint of its
+/// profiles and steps of at most L / N on each piece between them); unknowns
 /// (N_B, M_B) at s = 0 and the whole state at the start of every other interval; residual:
 /// continuity at each interior node and the tip balance. Newton (chord iterations with the
 /// last factorization; a fresh Jacobian when they contract slowly) with the exact Jacobian
@@ -41,10 +44,11 @@ struct DynamicsOptions {
   /// Converged when the scaled residual (docs/conventions.md) satisfies ||r||_inf <= this.
   double tolerance = 1e-10;
   int max_iterations = 30;  ///< Newton (chord) iterations per time step
-  /// Kelvin-Voigt viscosity eta [Pa s] (the scenario's body.material.viscosity_Pa_s).
-  double viscosity_Pa_s = 0.0;
-  /// Point mass at the tip [kg] (the scenario's tip_mass_kg).
-  double tip_mass_kg = 0.0;
+  /// Kelvin-Voigt viscosity eta [Pa s], constant along s. Unset (the default): the model's
+  /// body.material.viscosity_Pa_s (a constant or a profile along s).
+  std::optional<double> viscosity_Pa_s;
+  /// Point mass at the tip [kg]. Unset (the default): the model's tip_mass_kg.
+  std::optional<double> tip_mass_kg;
 };
 
 /// The loads at time t [s] (a simulation's drive: constant, or time profiles).
@@ -86,8 +90,9 @@ struct DynamicsSummary {
 const char* to_string(DynamicsSummary::Status s);
 
 /// Rod dynamics of one model: static initialization at t = 0, then fixed time steps.
-/// Holds a reference to the model (it must outlive the solver). Tension drives only:
-/// a TCA drive is refused (DomainError) until the thermal coupling is added.
+/// Holds a reference to the model (it must outlive the solver). Tension drives and TCA
+/// drives (by temperature from the loads, or electric: thermal states advanced with each
+/// step; docs/conventions.md "TCAs in rod dynamics").
 class RodDynamics {
  public:
   RodDynamics(const rod::RodModel& model, const DynamicsOptions& options);
@@ -103,9 +108,15 @@ class RodDynamics {
 
   double time_s() const;
   int intervals() const;        ///< M
-  int state_dimension() const;  ///< 24 + actuators
-  /// States at the N + 1 grid points s_i = i L / N of the last converged solve.
+  int state_dimension() const;  ///< 24 + actuators + TCA-driven actuators
+  /// States at the grid points of the last converged solve (grid_s_m(); s_i = i L / N on a
+  /// uniform body).
   const std::vector<Eigen::VectorXd>& grid_states() const;
+  /// Arc lengths of the grid points [m], increasing from 0 to L.
+  const std::vector<double>& grid_s_m() const;
+  /// RK4 steps along s actually used (DynamicsOptions::steps on a uniform body; at least that
+  /// on a varying one, whose breakpoints are grid nodes).
+  int steps() const;
   Eigen::Vector3d tip_position_W_m() const;
   Eigen::Matrix3d tip_rotation_W() const;
   /// Kinetic energy 1/2 int (rho A |q|^2 + w . rho J w) ds + 1/2 m_tip |q(L)|^2 [J].
@@ -118,6 +129,10 @@ class RodDynamics {
   /// Per actuator: tension of one string [N] and elongation [m].
   std::vector<double> tensions_N() const;
   std::vector<double> elongations_m() const;
+  /// Per actuator, its segments' temperatures of the last solve [K], base to tip (one for a
+  /// TCA at a uniform temperature; empty for a tension drive): an electric drive's thermal
+  /// states, else the loads' temperatures.
+  std::vector<std::vector<double>> segment_temperatures_K() const;
 
  private:
   struct Impl;

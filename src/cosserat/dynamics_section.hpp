@@ -1,10 +1,12 @@
 #pragma once
 /// The body properties the rod dynamics reads at arc length s, in one place: stiffness,
 /// Kelvin-Voigt damping, mass and rotational inertia per unit length, reference strains
-/// (docs/conventions.md "Rod dynamics (shooting method)"). Constant along s today (the
-/// model's constant section and material); switching to properties that vary along s
-/// changes only section_at().
+/// (docs/conventions.md "Rod dynamics (shooting method)"). They follow the model's profiles
+/// along s (docs/scenario-format.md "Profiles along the body"), viscosity included.
 #include <Eigen/Core>
+#include <algorithm>
+#include <optional>
+#include <vector>
 
 #include "rod/model.hpp"
 
@@ -22,25 +24,76 @@ struct SectionAt {
   Eigen::Vector3d omega_star;  ///< reference curvature [1/m]
 };
 
-/// The properties at arc length s [m] with Kelvin-Voigt viscosity eta [Pa s]
-/// (eta_s = eta / (2 (1 + poisson_ratio)), as G from E).
-inline SectionAt section_at(const rod::RodModel& model, double /*s_m*/, double viscosity_Pa_s) {
-  SectionAt p;
-  p.K_se = model.shear_extension_stiffness();
-  p.K_bt = model.bending_torsion_stiffness();
-  const double eta = viscosity_Pa_s;
-  const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
-  const rod::Section& sec = model.section;
-  p.B_se = Eigen::Vector3d(eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2);
-  p.B_bt = Eigen::Vector3d(eta * sec.I_x_m4, eta * sec.I_y_m4, eta_s * sec.J_m4);
-  const double rho = model.material.density_kg_m3;
-  p.rho_A = rho * sec.area_m2;
-  p.rho_J = Eigen::Vector3d(rho * sec.I_x_m4, rho * sec.I_y_m4, rho * (sec.I_x_m4 + sec.I_y_m4));
-  p.omega_star = model.reference_curvature_B_1_m;
-  return p;
+/// Kelvin-Voigt viscosity eta at s [Pa s]: `override_Pa_s` when given (constant along s),
+/// else the model's body.material.viscosity_Pa_s profile.
+inline double viscosity_at(const rod::RodModel& model, double s_m,
+                           const std::optional<double>& override_Pa_s,
+                           rod::Side side = rod::Side::kRight) {
+  if (override_Pa_s) return *override_Pa_s;
+  const rod::Profile& p = model.material.viscosity_profile;
+  return p.is_constant() ? model.material.viscosity_Pa_s : p.value(s_m, side);
 }
 
 /// Whether section_at() is the same at every s (then the solver evaluates it once).
-inline bool section_is_uniform(const rod::RodModel& /*model*/) { return true; }
+inline bool section_is_uniform(const rod::RodModel& model,
+                               const std::optional<double>& viscosity_override_Pa_s) {
+  return model.uniform_body() &&
+         (viscosity_override_Pa_s || model.material.viscosity_profile.is_constant());
+}
+
+/// The properties at arc length s [m] with Kelvin-Voigt viscosity eta [Pa s]
+/// (eta_s = eta / (2 (1 + poisson_ratio)), as G from E); at a jump of a profile the limit
+/// from `side`. A uniform body takes the model's constant section and material.
+inline SectionAt section_at(const rod::RodModel& model, double s_m, double viscosity_Pa_s,
+                            rod::Side side = rod::Side::kRight) {
+  SectionAt p;
+  const double eta = viscosity_Pa_s;
+  const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
+  if (model.uniform_body()) {
+    p.K_se = model.shear_extension_stiffness();
+    p.K_bt = model.bending_torsion_stiffness();
+    const rod::Section& sec = model.section;
+    p.B_se = Eigen::Vector3d(eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2);
+    p.B_bt = Eigen::Vector3d(eta * sec.I_x_m4, eta * sec.I_y_m4, eta_s * sec.J_m4);
+    const double rho = model.material.density_kg_m3;
+    p.rho_A = rho * sec.area_m2;
+    p.rho_J = Eigen::Vector3d(rho * sec.I_x_m4, rho * sec.I_y_m4, rho * (sec.I_x_m4 + sec.I_y_m4));
+    p.omega_star = model.reference_curvature_B_1_m;
+    return p;
+  }
+  const rod::SectionProperties sec = model.section.properties_at(s_m, side);
+  p.K_se = model.shear_extension_stiffness(s_m, side);
+  p.K_bt = model.bending_torsion_stiffness(s_m, side);
+  p.B_se = Eigen::Vector3d(eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2);
+  p.B_bt = Eigen::Vector3d(eta * sec.I_x_m4, eta * sec.I_y_m4, eta_s * sec.J_m4);
+  const rod::Profile& rho_p = model.material.density_profile;
+  const double rho = rho_p.is_constant() ? model.material.density_kg_m3 : rho_p.value(s_m, side);
+  p.rho_A = rho * sec.area_m2;
+  p.rho_J = Eigen::Vector3d(rho * sec.I_x_m4, rho * sec.I_y_m4, rho * (sec.I_x_m4 + sec.I_y_m4));
+  p.omega_star = model.reference_curvature_at(s_m, side);
+  return p;
+}
+
+/// The properties at s with the viscosity of viscosity_at().
+inline SectionAt section_at(const rod::RodModel& model, double s_m,
+                            const std::optional<double>& viscosity_override_Pa_s,
+                            rod::Side side = rod::Side::kRight) {
+  return section_at(model, s_m, viscosity_at(model, s_m, viscosity_override_Pa_s, side), side);
+}
+
+/// Where the dynamics' grid must have a node: every breakpoint of the model's profiles and of
+/// the viscosity profile (unless overridden) strictly inside (0, L), sorted, without repeats.
+inline std::vector<double> grid_breakpoints(const rod::RodModel& model,
+                                            const std::optional<double>& viscosity_override_Pa_s) {
+  std::vector<double> all = model.breakpoints();
+  if (!viscosity_override_Pa_s) {
+    for (double s : model.material.viscosity_profile.breakpoints()) {
+      if (s > 0.0 && s < model.length_m) all.push_back(s);
+    }
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
+}
 
 }  // namespace tcasim::cosserat::dynamics

@@ -1,0 +1,137 @@
+#pragma once
+/// Internal state of cosserat::RodDynamics shared by its source files (not installed, not part
+/// of the public API): the state layout, the stage-point data of the BDF-alpha history, and
+/// the solver's workspace. The files, one concept each:
+///   dynamics.cpp          options, setup, loads, scales, initialize() and step() in time;
+///   dynamics_rhs.cpp      the time-discretized rod equations at one point and their Jacobian;
+///   dynamics_shooting.cpp RK4 over the grid, the multiple-shooting residual and Jacobian;
+///   dynamics_newton.cpp   the Newton (chord) iterations of one solve;
+///   dynamics_outputs.cpp  energies, tensions, elongations and the tip.
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#include <vector>
+
+#include "cosserat/dynamics.hpp"
+#include "cosserat/dynamics_section.hpp"
+#include "cosserat/string_system.hpp"
+#include "tca/tca.hpp"
+
+namespace tcasim::cosserat {
+
+namespace dynamics {
+
+using internal::Vec3;
+
+// State layout (dynamics.hpp).
+constexpr int kP = 0, kR = 3, kN = 12, kM = 15, kQ = 18, kW = 21, kDelta = 24;
+
+/// What a stage point (or the tip point) keeps: the strains and velocities whose time
+/// derivatives the BDF-alpha formula needs, e = nu - nu* (the deviation, as in the static
+/// solver: no cancellation), omega, q, w, and the position p for the energies.
+struct PointData {
+  Vec3 e = Vec3::Zero(), omega = Vec3::Zero(), q = Vec3::Zero(), w = Vec3::Zero();
+  Vec3 p = Vec3::Zero();
+};
+/// History (or time derivative) of the differentiated quantities at one point.
+struct PointRates {
+  Vec3 e = Vec3::Zero(), omega = Vec3::Zero(), q = Vec3::Zero(), w = Vec3::Zero();
+};
+
+// Classical RK4: stage nodes c and the multipliers of the previous stage.
+constexpr double kStageC[4] = {0.0, 0.5, 0.5, 1.0};
+constexpr double kStageA[4] = {0.0, 0.5, 0.5, 1.0};
+constexpr double kStageB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+/// Up to this many unknowns the Newton system is factorized densely (partial pivoting):
+/// faster than SparseLU at that size, the same solution.
+constexpr int kDenseUnknowns = 300;
+/// Chord iterations with one factorization before a fresh Jacobian is computed.
+constexpr int kStaleIterations = 6;
+/// Most TCA-driven actuators of one model (scratch arrays on the stack).
+constexpr int kMaxTcas = 64;
+
+}  // namespace dynamics
+
+struct RodDynamics::Impl {
+  Impl(const rod::RodModel& m, const DynamicsOptions& o);
+
+  // --- the discretization
+  /// Right-hand side at arc length s of state y with the history of stage slot `slot`;
+  /// the stage's strains and velocities are written to trial[slot]. With A: the Jacobian
+  /// df/dy (D x D). False when the section's constitutive solve fails or y is not finite.
+  bool rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy, Eigen::MatrixXd* A);
+  /// Integrates interval k from y (its S RK4 steps), writing the grid states; Phi: the
+  /// sensitivity dy_end/dy0 (D x D) when non-null.
+  bool integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi);
+  /// State at node k from the unknowns z.
+  void node_state(const Eigen::VectorXd& z, int k, Eigen::VectorXd& y) const;
+  /// Scaled residual at z; with `jacobian`, also the scaled Jacobian into J_.
+  bool evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& r, bool jacobian);
+  /// Tip residual rows (6) of the end state and, with G, their derivative (6 x D).
+  /// With TCA strings also their laws (n_tca rows); false where a TCA law has no state.
+  bool tip_residual(const Eigen::VectorXd& y, Eigen::Ref<Eigen::VectorXd> r,
+                    Eigen::MatrixXd* G) const;
+  /// Newton (chord) iterations from z.
+  DynamicsSummary solve(Eigen::VectorXd& z);
+  void set_loads(const rod::Loads& loads);
+  void set_scales();
+  int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions
+  int unknowns() const { return n0() + (M - 1) * D; }
+  int slots() const { return 4 * N + 1; }  // 4 stages per step, then the tip point
+  /// Body properties at stage slot `slot` (the tip point is slot 4 N).
+  const dynamics::SectionAt& section_of(int slot) const { return uniform ? sec : slot_sec[slot]; }
+  /// Length of RK4 step i [m].
+  double step_length(int i) const { return uniform ? h : s_grid[i + 1] - s_grid[i]; }
+
+  const rod::RodModel& model;
+  DynamicsOptions opt;
+  dynamics::SectionAt sec;  // at s = 0 (everywhere when `uniform`); sets the scales
+  bool uniform = true;      // dynamics::section_is_uniform
+  /// Varying body: the properties at every stage slot (the end stage of a step and the tip
+  /// take the limit from the left at a jump).
+  std::vector<dynamics::SectionAt> slot_sec;
+  double tip_mass_kg = 0.0;  // options' or the model's
+  int n_act = 0, D = 0, N = 0, M = 0, S = 0;
+  // TCA strings: their tensions are states T_j (constant along s) at kT + j, unknowns at the
+  // base, fixed by the TCA law at the tip; tca_actuator[j] is the actuator of T_j and
+  // tca_slot[i] the j of actuator i (-1: tension drive).
+  int n_tca = 0, kT = 0;
+  std::vector<int> tca_actuator, tca_slot;
+  std::vector<std::vector<tca::Segment>> segments;  // per actuator: the current temperatures
+  // Electric drives: per actuator and segment, the thermal state [K] advanced with the steps.
+  std::vector<std::vector<double>> temperatures_K;
+  double L = 0.0, h = 0.0;     // h = L / N (the step of a uniform body)
+  std::vector<double> s_grid;  // N + 1 grid points; s_grid[i] = i h on a uniform body
+  // BDF-alpha: y_t(n+1) = c0 y(n+1) + c1 y(n) + c2 y(n-1) + d1 y_t(n) ([Till2019]).
+  double c0 = 0.0, c1 = 0.0, c2 = 0.0, d1 = 0.0;
+  double c0_active = 0.0;  // 0 for the static solve
+  double t = 0.0;
+  // Loads of the current solve.
+  internal::Vec3 f_ext_W = internal::Vec3::Zero();  // rho A g of `sec`
+  internal::Vec3 F_tip_W = internal::Vec3::Zero();
+  internal::Vec3 M_tip_W = internal::Vec3::Zero(), g_W = internal::Vec3::Zero();
+  std::vector<double> cT;       // count * tension per actuator (tension drives)
+  std::vector<double> cT_eval;  // rhs scratch: cT with the TCA tensions of the state
+  std::vector<double> length_ratio, count;
+  double F_c = 1.0;
+  Eigen::VectorXd scale;  // per state component (D)
+  // Per slot: history of the current step, data of the last evaluation (trial), of the
+  // last two converged steps and the time derivative at the last one.
+  std::vector<dynamics::PointRates> hist, cur_t;
+  std::vector<dynamics::PointData> trial, cur, prev;
+  std::vector<Eigen::VectorXd> grid;  // N + 1 states of the last evaluation
+  std::vector<Eigen::VectorXd> grid_converged;
+  Eigen::VectorXd z, z_prev, z_prev2;
+  int history_steps = 0;  // converged steps behind z (for the extrapolated start)
+  // Jacobian (scaled) and its factorization.
+  Eigen::SparseMatrix<double> J_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  bool pattern_analyzed = false, lu_valid = false;
+  bool dense = false;  // unknowns() <= kDenseUnknowns: dense LU instead of SparseLU
+  Eigen::MatrixXd J_dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
+  double lu_c0 = -1.0;
+  std::vector<Eigen::Triplet<double>> triplets_;
+};
+
+}  // namespace tcasim::cosserat

@@ -1,0 +1,173 @@
+// Rod dynamics: the time-discretized rod equations at one point (the section's constitutive
+// solve with Kelvin-Voigt damping and the strings, the BDF-alpha rates) and their Jacobian.
+#include <cmath>
+
+#include "cosserat/dynamics_impl.hpp"
+
+namespace tcasim::cosserat {
+
+namespace {
+using internal::hat;
+using internal::Mat3;
+using internal::Mat6;
+using internal::Vec3;
+using internal::Vec6;
+using namespace dynamics;
+}  // namespace
+
+bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
+                            Eigen::MatrixXd* A) {
+  const Eigen::Map<const Mat3> R(y.data() + kR);
+  const Vec3 Nb = y.segment<3>(kN), Mb = y.segment<3>(kM);
+  const Vec3 q = y.segment<3>(kQ), w = y.segment<3>(kW);
+  const PointRates& H = hist[slot];
+  const dynamics::SectionAt& sp = section_of(slot);
+  const Vec3 f_W = sp.rho_A * g_W;
+  PointData& X = trial[slot];
+  const double c = c0_active;
+  // Effective stiffness of the step: K + c0 B (Kelvin-Voigt, docs/conventions.md).
+  const Vec3 Kt_se = sp.K_se + c * sp.B_se, Kt_bt = sp.K_bt + c * sp.B_bt;
+  const Vec3 Kt_se_inv = Kt_se.cwiseInverse(), Kt_bt_inv = Kt_bt.cwiseInverse();
+  // Section constitutive law solved for the strains xi = (e, omega):
+  //   K_se e + B_se (c0 e + e_h) + sum c_i T_i qh_i = N,
+  //   K_bt (omega - omega*) + B_bt (c0 omega + omega_h) + sum c_i T_i r_i x qh_i = M.
+  const Vec3 bN = Nb - sp.B_se.cwiseProduct(H.e);
+  const Vec3 bM = Mb + sp.K_bt.cwiseProduct(sp.omega_star) - sp.B_bt.cwiseProduct(H.omega);
+  // count times tension per actuator: prescribed, or the TCA tension state T_j of y.
+  std::vector<double>& cTl = cT_eval;
+  cTl = cT;
+  for (int j = 0; j < n_tca; ++j) cTl[tca_actuator[j]] = count[tca_actuator[j]] * y[kT + j];
+  bool strings = false;
+  for (int i = 0; i < n_act; ++i) strings = strings || cTl[i] != 0.0;
+  Vec3 e, om;
+  Mat6 Z;  // d xi / d (N, M)
+  if (!strings) {
+    e = Kt_se_inv.cwiseProduct(bN);
+    om = Kt_bt_inv.cwiseProduct(bM);
+    if (A) {
+      Z.setZero();
+      Z.diagonal() << Kt_se_inv, Kt_bt_inv;
+    }
+  } else {
+    e = X.e;
+    om = X.omega;
+    bool done = false;
+    const double force_scale = Nb.norm() + Mb.norm() / L + 1e-300;
+    for (int it = 0; it < 30 && !done; ++it) {
+      internal::StringSystem sys(Kt_se, Kt_bt, Kt_se_inv, Kt_bt_inv);
+      Vec3 gN = Kt_se.cwiseProduct(e) - bN;
+      Vec3 gM = Kt_bt.cwiseProduct(om) - bM;
+      double load = force_scale;
+      for (int i = 0; i < n_act; ++i) {
+        if (cTl[i] == 0.0) continue;
+        const rod::Routing& rt = model.actuators[i].routing;
+        const Vec3 r = rt.r(s), dr = rt.dr(s);
+        const Vec3 qi = e + Vec3::UnitZ() + om.cross(r) + dr;
+        const double qn = qi.norm();
+        const Vec3 qh = qi / qn;
+        gN += cTl[i] * qh;
+        gM += cTl[i] * r.cross(qh);
+        sys.add(r, cTl[i] / qn, qh);
+        load += std::abs(cTl[i]);
+      }
+      sys.factor();
+      Vec6 dx;
+      dx << gN, gM;
+      const double gnorm = std::max(gN.lpNorm<Eigen::Infinity>(), gM.lpNorm<Eigen::Infinity>() / L);
+      sys.solve_in_place(dx);
+      e -= dx.head<3>();
+      om -= dx.tail<3>();
+      if (!dx.allFinite()) return false;
+      done = gnorm <= 1e-15 * load ||
+             dx.head<3>().lpNorm<Eigen::Infinity>() + L * dx.tail<3>().lpNorm<Eigen::Infinity>() <=
+                 1e-15 * (e.lpNorm<Eigen::Infinity>() + L * om.lpNorm<Eigen::Infinity>() + 1e-300);
+      if (done && A) {
+        Z.setIdentity();
+        sys.solve_in_place(Z);
+      }
+    }
+    if (!done) return false;
+  }
+  const Vec3 nu = e + Vec3::UnitZ();
+  X.e = e;
+  X.omega = om;
+  X.q = q;
+  X.w = w;
+  X.p = y.segment<3>(kP);
+  const Vec3 q_t = c * q + H.q, w_t = c * w + H.w;
+  const Vec3 e_t = c * e + H.e, om_t = c * om + H.omega;
+  const Vec3 Jw = sp.rho_J.cwiseProduct(w);
+  // [Till2019] (body frame): p' = R nu, R' = R hat(omega),
+  //   N' = -omega x N + rho A (w x q + q_t) - R^T f_ext,
+  //   M' = -omega x M - nu x N + w x rho J w + rho J w_t,
+  //   q' = nu_t - omega x q + w x nu,  w' = omega_t - omega x w.
+  dy.segment<3>(kP) = R * nu;
+  Eigen::Map<Mat3>(dy.data() + kR) = R * hat(om);
+  dy.segment<3>(kN) = -om.cross(Nb) + sp.rho_A * (w.cross(q) + q_t) - R.transpose() * f_W;
+  dy.segment<3>(kM) = -om.cross(Mb) - nu.cross(Nb) + w.cross(Jw) + sp.rho_J.cwiseProduct(w_t);
+  dy.segment<3>(kQ) = e_t - om.cross(q) + w.cross(nu);
+  dy.segment<3>(kW) = om_t - om.cross(w);
+  for (int i = 0; i < n_act; ++i) {
+    const rod::Routing& rt = model.actuators[i].routing;
+    const Vec3 qi = nu + om.cross(rt.r(s)) + rt.dr(s);
+    dy[kDelta + i] = qi.norm() - length_ratio[i];
+  }
+  if (n_tca > 0) dy.segment(kT, n_tca).setZero();  // T_j' = 0: one tension along the string
+  if (!A) return true;
+  // Jacobian: direct part (xi fixed) plus df/dxi Z on the (N, M) columns.
+  Eigen::MatrixXd& Aj = *A;
+  Aj.setZero(D, D);
+  const Mat3 I = Mat3::Identity();
+  const Mat3 Om = hat(om);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      Aj(kP + i, kR + 3 * j + i) = nu[j];                                         // d(R nu)/dR_ij
+      for (int k = 0; k < 3; ++k) Aj(kR + 3 * k + i, kR + 3 * j + i) = Om(j, k);  // R hat(om)
+      Aj(kN + j, kR + 3 * j + i) = -f_W[i];                                       // -R^T f
+    }
+  }
+  Aj.block<3, 3>(kN, kN) = -Om;
+  Aj.block<3, 3>(kN, kQ) = sp.rho_A * (hat(w) + c * I);
+  Aj.block<3, 3>(kN, kW) = -sp.rho_A * hat(q);
+  Aj.block<3, 3>(kM, kM) = -Om;
+  Aj.block<3, 3>(kM, kN) = -hat(nu);
+  Aj.block<3, 3>(kM, kW) =
+      hat(w) * sp.rho_J.asDiagonal() - hat(Jw) + c * Mat3(sp.rho_J.asDiagonal());
+  Aj.block<3, 3>(kQ, kQ) = -Om;
+  Aj.block<3, 3>(kQ, kW) = -hat(nu);
+  Aj.block<3, 3>(kW, kW) = -Om;
+  // df/dxi (D x 6).
+  Eigen::Matrix<double, Eigen::Dynamic, 6> Fx =
+      Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(D, 6);
+  Fx.block<3, 3>(kP, 0) = R;
+  for (int j = 0; j < 3; ++j) Fx.block<3, 3>(kR + 3 * j, 3) = -R * hat(Vec3::Unit(j));
+  Fx.block<3, 3>(kN, 3) = hat(Nb);
+  Fx.block<3, 3>(kM, 0) = hat(Nb);
+  Fx.block<3, 3>(kM, 3) = hat(Mb);
+  Fx.block<3, 3>(kQ, 0) = c * I + hat(w);
+  Fx.block<3, 3>(kQ, 3) = hat(q);
+  Fx.block<3, 3>(kW, 3) = c * I + hat(w);
+  for (int i = 0; i < n_act; ++i) {
+    const rod::Routing& rt = model.actuators[i].routing;
+    const Vec3 r = rt.r(s);
+    const Vec3 qi = nu + om.cross(r) + rt.dr(s);
+    const Vec3 qh = qi.normalized();
+    Fx.block<1, 3>(kDelta + i, 0) = qh.transpose();
+    Fx.block<1, 3>(kDelta + i, 3) = r.cross(qh).transpose();
+  }
+  // TCA tensions: f depends on T_j only through the strains, d xi / d T_j = -Z c_i (qh_i,
+  // r_i x qh_i) from the constitutive law.
+  for (int j = 0; j < n_tca; ++j) {
+    const int i = tca_actuator[j];
+    const rod::Routing& rt = model.actuators[i].routing;
+    const Vec3 r = rt.r(s);
+    const Vec3 qh = (nu + om.cross(r) + rt.dr(s)).normalized();
+    Vec6 g;
+    g << qh, r.cross(qh);
+    Aj.col(kT + j) += Fx * (Z * (-count[i] * g));
+  }
+  Aj.middleCols<6>(kN) += Fx * Z;
+  return true;
+}
+
+}  // namespace tcasim::cosserat

@@ -1,0 +1,185 @@
+// Rod dynamics: RK4 over each shooting interval with its forward sensitivities, the tip
+// balance, and the multiple-shooting residual and Jacobian (assembled and factorized).
+#include <cmath>
+
+#include "common/error.hpp"
+#include "cosserat/dynamics_impl.hpp"
+
+namespace tcasim::cosserat {
+
+namespace {
+using internal::hat;
+using internal::Mat3;
+using internal::Mat6;
+using internal::Vec3;
+using internal::Vec6;
+using namespace dynamics;
+}  // namespace
+
+bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi) {
+  Eigen::VectorXd Y(D), kj(D), acc(D);
+  Eigen::MatrixXd A, dY, dK, dacc;
+  if (Phi) {
+    Phi->setIdentity(D, D);
+    dY.resize(D, D);
+    dK.resize(D, D);
+    dacc.resize(D, D);
+  }
+  for (int i = k * S; i < (k + 1) * S; ++i) {
+    grid[i] = y;
+    const double s = s_grid[i], hs = step_length(i);
+    acc.setZero();
+    if (Phi) dacc.setZero();
+    for (int j = 0; j < 4; ++j) {
+      if (j == 0) {
+        Y = y;
+        if (Phi) dY = *Phi;
+      } else {
+        Y = y + (kStageA[j] * hs) * kj;
+        if (Phi) dY = *Phi + (kStageA[j] * hs) * dK;
+      }
+      if (!rhs(s + kStageC[j] * hs, Y, 4 * i + j, kj, Phi ? &A : nullptr)) return false;
+      if (!std::isfinite(kj.sum())) return false;
+      acc += kStageB[j] * kj;
+      if (Phi) {
+        dK.noalias() = A * dY;
+        dacc += kStageB[j] * dK;
+      }
+    }
+    y += hs * acc;
+    if (Phi) *Phi += hs * dacc;
+  }
+  if (k == M - 1) grid[N] = y;
+  return y.allFinite();
+}
+
+void RodDynamics::Impl::node_state(const Eigen::VectorXd& zz, int k, Eigen::VectorXd& y) const {
+  if (k == 0) {
+    y.setZero(D);
+    y.segment<3>(kP) = model.base_position_W_m;
+    Eigen::Map<Mat3>(y.data() + kR) = model.R_WB0;
+    y.segment<6>(kN) = zz.head<6>();
+    for (int j = 0; j < n_tca; ++j) y[kT + j] = zz[6 + j];
+    return;
+  }
+  y = zz.segment(n0() + (k - 1) * D, D);
+}
+
+bool RodDynamics::Impl::tip_residual(const Eigen::VectorXd& y, Eigen::Ref<Eigen::VectorXd> r,
+                                     Eigen::MatrixXd* G) const {
+  // Balance of the tip section and the tip mass m_t (docs/conventions.md):
+  //   N(L) = R^T (F_e + m_t g) - m_t (q_t + w x q),   M(L) = R^T M_e.
+  const Eigen::Map<const Mat3> R(y.data() + kR);
+  const Vec3 q = y.segment<3>(kQ), w = y.segment<3>(kW);
+  const double mt = tip_mass_kg;
+  const PointRates& H = hist[4 * N];
+  const Vec3 F = F_tip_W + mt * g_W;
+  const Vec3 q_t = c0_active * q + H.q;
+  r.head<3>() = (y.segment<3>(kN) - R.transpose() * F + mt * (q_t + w.cross(q))) / F_c;
+  r.segment<3>(3) = (y.segment<3>(kM) - R.transpose() * M_tip_W) / (F_c * L);
+  // TCA strings: the law phi(T, delta(L)) = 0 between the tension and the elongation, with
+  // coil contact (tca::contact_residual, as in statics).
+  double dphi_dT[kMaxTcas], dphi_ddelta[kMaxTcas];
+  for (int j = 0; j < n_tca; ++j) {
+    const int i = tca_actuator[j];
+    try {
+      const tca::ContactResidual c = tca::contact_residual(*model.actuators[i].drive.tca, y[kT + j],
+                                                           y[kDelta + i], segments[i]);
+      r[6 + j] = c.phi_N / F_c;
+      dphi_dT[j] = c.dphi_dF;
+      dphi_ddelta[j] = c.dphi_ddelta_N_m;
+    } catch (const DomainError&) {
+      return false;
+    }
+  }
+  if (!G) return true;
+  G->setZero(6 + n_tca, D);
+  for (int j = 0; j < n_tca; ++j) {
+    (*G)(6 + j, kT + j) = dphi_dT[j] / F_c;
+    (*G)(6 + j, kDelta + tca_actuator[j]) = dphi_ddelta[j] / F_c;
+  }
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      (*G)(j, kR + 3 * j + i) = -F[i] / F_c;
+      (*G)(3 + j, kR + 3 * j + i) = -M_tip_W[i] / (F_c * L);
+    }
+  }
+  G->block<3, 3>(0, kN) = Mat3::Identity() / F_c;
+  G->block<3, 3>(0, kQ) = mt * (c0_active * Mat3::Identity() + hat(w)) / F_c;
+  G->block<3, 3>(0, kW) = -mt * hat(q) / F_c;
+  G->block<3, 3>(3, kM) = Mat3::Identity() / (F_c * L);
+  return true;
+}
+
+bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, bool jacobian) {
+  const int n = unknowns();
+  r.resize(n);
+  Eigen::VectorXd y(D), y_next(D);
+  Eigen::MatrixXd Phi, G;
+  if (jacobian) triplets_.clear();
+  const Eigen::ArrayXd inv_scale = scale.array().inverse();
+  for (int k = 0; k < M; ++k) {
+    node_state(zz, k, y);
+    if (!integrate_interval(k, y, jacobian ? &Phi : nullptr)) return false;
+    const int row = k * D;  // continuity rows of node k + 1; the tip rows after the last
+    const int col0 = k == 0 ? 0 : n0() + (k - 1) * D;
+    // Columns of node k's unknowns: (N, M) and the TCA tensions at the base, the whole state
+    // elsewhere; column c is state component state_col(c).
+    const int first = k == 0 ? kN : 0, ncols = k == 0 ? n0() : D;
+    const auto state_col = [&](int c) { return k == 0 && c >= 6 ? kT + c - 6 : first + c; };
+    if (k < M - 1) {
+      node_state(zz, k + 1, y_next);
+      r.segment(row, D) = ((y - y_next).array() * inv_scale).matrix();
+      if (jacobian) {
+        const int col1 = n0() + k * D;
+        for (int c = 0; c < ncols; ++c) {
+          const int sc = state_col(c);
+          for (int rr = 0; rr < D; ++rr) {
+            triplets_.emplace_back(row + rr, col0 + c, Phi(rr, sc) * scale[sc] * inv_scale[rr]);
+          }
+        }
+        for (int rr = 0; rr < D; ++rr) triplets_.emplace_back(row + rr, col1 + rr, -1.0);
+      }
+    } else {
+      // The tip point's strains (energies, damping history) and the tip residual.
+      Eigen::VectorXd dy(D);
+      if (!rhs(L, y, 4 * N, dy, nullptr)) return false;
+      if (!tip_residual(y, r.segment(row, n0()), jacobian ? &G : nullptr)) return false;
+      if (jacobian) {
+        const Eigen::MatrixXd GP = G * Phi;
+        for (int c = 0; c < ncols; ++c) {
+          const int sc = state_col(c);
+          for (int rr = 0; rr < n0(); ++rr) {
+            triplets_.emplace_back(row + rr, col0 + c, GP(rr, sc) * scale[sc]);
+          }
+        }
+      }
+    }
+  }
+  if (!r.allFinite()) return false;
+  if (jacobian) {
+    if (dense) {
+      J_dense_.setZero(n, n);
+      for (const auto& tr : triplets_) J_dense_(tr.row(), tr.col()) += tr.value();
+      dense_lu_.compute(J_dense_);
+      // PartialPivLU does not report singularity: check the pivots.
+      const Eigen::VectorXd piv = dense_lu_.matrixLU().diagonal().cwiseAbs();
+      lu_valid = piv.allFinite() && piv.minCoeff() > 1e-14 * piv.maxCoeff();
+      lu_c0 = c0_active;
+      return true;
+    }
+    J_.resize(n, n);
+    J_.setFromTriplets(triplets_.begin(), triplets_.end());
+    J_.makeCompressed();
+    if (!pattern_analyzed) {
+      lu_.analyzePattern(J_);
+      pattern_analyzed = true;
+    }
+    lu_.factorize(J_);
+    lu_valid = lu_.info() == Eigen::Success;
+    lu_c0 = c0_active;
+  }
+  return true;
+}
+
+}  // namespace tcasim::cosserat
