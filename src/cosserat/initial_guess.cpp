@@ -29,14 +29,11 @@ constexpr double kGuessTolerance = 1e-3;
 
 Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double lambda,
                                                     bool with_gravity, bool* used_gravity) {
-  if (planar) {
-    // The 3-D guess of a planar problem lies in the plane (its other components are
-    // exact zeros): keep its in-plane unknowns.
-    return reduce(parent->initial_guess(act, lambda, with_gravity, used_gravity));
-  }
   if (used_gravity) *used_gravity = false;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
-  set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
+  // The guess in 3-D unknowns; a planar problem's lies in the plane (its other components
+  // are exact zeros) and the layout keeps its in-plane unknowns.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(6 + n_tca + n_con);
+  set_parameters(act, lambda, Eigen::VectorXd::Zero(nx));  // cT of the known tensions, TCA segments
   std::vector<double> cTs = cT;
   Vec3 e, omega;  // e = nu - nu*
   if (with_gravity && !f_ext_W.isZero(0.0)) {
@@ -55,6 +52,7 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double
         x.head<3>() = e + base.head<3>();
         x.segment<3>(3) = omega + base.tail<3>();
         if (used_gravity) *used_gravity = true;
+        layout->reduce_unknowns(x);
         return x;
       }
     }
@@ -63,6 +61,7 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double
   closed_form_strains(cTs, e, omega);
   x.head<3>() = e;
   x.segment<3>(3) = omega;
+  layout->reduce_unknowns(x);
   return x;
 }
 
