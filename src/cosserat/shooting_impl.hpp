@@ -151,15 +151,11 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// the 3-D unknowns and returned in the layout's (Layout::reduce_unknowns).
   Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
                                 bool* used_gravity = nullptr);
-  /// TCA tensions of the guess: T_k = F_tca(delta_k(T)) with delta_k of the closed-form
-  /// strains plus `extra` (the mean load strains), by a small damped Newton iteration
-  /// (dT/d delta from the closed form); sets the TCA entries of the 3-D unknowns x (0 if it
-  /// fails) and their c T in cTs (known tensions as set by set_parameters).
+  /// TCA tensions of the guess (rod::solve_guess_tensions): T_k = F_tca(delta_k(T)) with
+  /// delta_k of the closed-form strains plus `extra` (the mean load strains); sets the TCA
+  /// entries of the 3-D unknowns x (0 if it fails) and their c T in cTs (known tensions as
+  /// set by set_parameters).
   void guess_tensions(const Vec6& extra, std::vector<double>& cTs, Eigen::VectorXd& x);
-  /// Constant strains of the closed form (docs/conventions.md) for tensions cT (count x
-  /// tension per actuator), offsets taken at s = 0: e = nu - nu* (the deviation, no
-  /// cancellation) and omega (the reference curvature plus the deviation).
-  void closed_form_strains(const std::vector<double>& cTs, Vec3& e, Vec3& omega) const;
   /// Pose at arc length s of a rod with constant strains (nu, omega) from the base pose:
   /// R = R0 exp(s hat(omega)), p = p0 + R0 V nu with V = int_0^s exp(t hat(omega)) dt.
   void arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R, Vec3& p) const;
