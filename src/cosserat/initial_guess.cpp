@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/lie_series.hpp"
 #include "cosserat/shooting_impl.hpp"
 #include "rod/closed_form.hpp"
 
@@ -92,19 +93,13 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
 
 void ShootingSolver::Impl::arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R,
                                     Vec3& p) const {
+  // [Sola2018] R = Exp(a) = I + a_c A + b_c A^2, V = s Jl(a) = s (I + b_c A + c_c A^2) with
+  // the series of common/lie_series.hpp (a_c = sin t / t, b_c = (1 - cos t) / t^2,
+  // c_c = (t - sin t) / t^3, t = |a|).
   const Vec3 a = s * omega;
-  const double th = a.norm();
   const Mat3 A = hat(a), A2 = A * A;
-  double c1, c2, c3;  // sin(th)/th, (1 - cos th)/th^2, (th - sin th)/th^3
-  if (th < 1e-4) {
-    c1 = 1.0 - th * th / 6.0;
-    c2 = 0.5 - th * th / 24.0;
-    c3 = 1.0 / 6.0 - th * th / 120.0;
-  } else {
-    c1 = std::sin(th) / th;
-    c2 = (1.0 - std::cos(th)) / (th * th);
-    c3 = (th - std::sin(th)) / (th * th * th);
-  }
+  const so3::Coefficients<double> k = so3::coefficients(a.squaredNorm());
+  const double c1 = k.a, c2 = k.b, c3 = k.c;
   R = model.R_WB0 * (Mat3::Identity() + c1 * A + c2 * A2);
   p = model.base_position_W_m + model.R_WB0 * (s * (nu + c2 * (A * nu) + c3 * (A2 * nu)));
 }
