@@ -24,6 +24,15 @@
 
 namespace tcasim::cosserat {
 
+/// The names the stage files above use unqualified (`using namespace stage_names;`).
+namespace stage_names {
+using namespace state_layout;
+using internal::all_finite;
+using internal::Mat3;
+using internal::Vec3;
+using internal::Vec6;
+}  // namespace stage_names
+
 struct ShootingSolver::Impl : internal::TipConditions {
   using Vec3 = internal::Vec3;
   using Mat3 = internal::Mat3;

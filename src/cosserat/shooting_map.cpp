@@ -4,11 +4,7 @@
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                                     Eigen::VectorXd& r) {
