@@ -4,15 +4,13 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/lie_series.hpp"
 #include "cosserat/shooting_impl.hpp"
+#include "rod/closed_form.hpp"
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 using internal::hat;
 
@@ -24,26 +22,32 @@ namespace {
 constexpr int kGuessNodes = 8;
 constexpr int kGuessIterations = 12;
 constexpr double kGuessTolerance = 1e-3;
+/// The guess's TCA tensions solve T_k = F_tca(delta_k(T)) to this residual over F_c.
+constexpr double kGuessTensionTolerance = 1e-12;
+
+/// The closed-form strains (rod::closed_form_strains) of tensions cTs: e = nu - nu*, omega.
+void closed_form(const rod::RodModel& m, const std::vector<double>& cTs, Vec3& e, Vec3& omega) {
+  const rod::ConstantStrains cf = rod::closed_form_strains(m, cTs);
+  e = cf.e;
+  omega = cf.omega;
+}
 
 }  // namespace
 
 Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double lambda,
                                                     bool with_gravity, bool* used_gravity) {
-  if (planar) {
-    // The 3-D guess of a planar problem lies in the plane (its other components are
-    // exact zeros): keep its in-plane unknowns.
-    return reduce(parent->initial_guess(act, lambda, with_gravity, used_gravity));
-  }
   if (used_gravity) *used_gravity = false;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(nx);
-  set_parameters(act, lambda, x);  // cT of the known tensions, scaled TCA segments
+  // The guess in 3-D unknowns; a planar problem's lies in the plane (its other components
+  // are exact zeros) and the layout keeps its in-plane unknowns.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(6 + n_tca + n_con);
+  set_parameters(act, lambda, Eigen::VectorXd::Zero(nx));  // cT of the known tensions, TCA segments
   std::vector<double> cTs = cT;
   Vec3 e, omega;  // e = nu - nu*
   if (with_gravity && !f_ext_W.isZero(0.0)) {
     Vec6 mean = Vec6::Zero();
     for (int it = 0; it < kGuessIterations; ++it) {
       guess_tensions(mean, cTs, x);
-      closed_form_strains(cTs, e, omega);
+      closed_form(model, cTs, e, omega);
       Vec6 next_mean, base;
       load_strains(nu_star + e + mean.head<3>(), omega + mean.tail<3>(), next_mean, base);
       if (!next_mean.allFinite() || !base.allFinite()) break;
@@ -51,79 +55,31 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double
       mean = next_mean;
       if (change <= kGuessTolerance * (1.0 / L + mean.lpNorm<Eigen::Infinity>())) {
         guess_tensions(mean, cTs, x);
-        closed_form_strains(cTs, e, omega);
+        closed_form(model, cTs, e, omega);
         x.head<3>() = e + base.head<3>();
         x.segment<3>(3) = omega + base.tail<3>();
         if (used_gravity) *used_gravity = true;
+        layout->reduce_unknowns(x);
         return x;
       }
     }
   }
   guess_tensions(Vec6::Zero(), cTs, x);  // without gravity (none, or no fixed point)
-  closed_form_strains(cTs, e, omega);
+  closed_form(model, cTs, e, omega);
   x.head<3>() = e;
   x.segment<3>(3) = omega;
+  layout->reduce_unknowns(x);
   return x;
 }
 
 void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>& cTs,
                                           Eigen::VectorXd& x) {
   if (n_tca == 0) return;
-  Vec3 nu, omega;
-  Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca), g(n_tca), dT(n_tca);
-  Eigen::MatrixXd G(n_tca, n_tca);
-  // Residuals g_k = phi_k(T_k, delta_k(T)) of the closed-form model (the TCA law with coil
-  // contact, tca::contact_residual); it may throw.
-  auto eval = [&](const Eigen::VectorXd& Tk, Eigen::VectorXd& gk, Eigen::MatrixXd* Gk) {
-    for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * Tk[k];
-    closed_form_strains(cTs, nu, omega);
-    nu += nu_star + extra.head<3>();
-    omega += extra.tail<3>();
-    for (int k = 0; k < n_tca; ++k) {
-      const int i = act_of[k];
-      const rod::Routing& ro = model.actuators[i].routing;
-      const double delta =
-          L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
-      const tca::ContactResidual c =
-          tca::contact_residual(*model.actuators[i].drive.tca, Tk[k], delta, scaled_segments[i]);
-      gk[k] = c.phi_N;
-      if (Gk) {
-        const Vec3 ri = ro.r(0.0);
-        for (int l = 0; l < n_tca; ++l) {
-          const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
-          // d delta_k / d T_l = -L C_kl c_l (closed form)
-          const double C =
-              1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() + ri.x() * rl.x() / K_omega.y();
-          (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) - c.dphi_ddelta_N_m * L * C * count[act_of[l]];
-        }
-      }
-    }
-    return gk.allFinite();
-  };
-  bool ok = false;
-  try {
-    ok = eval(T, g, &G);
-    for (int it = 0; ok && it < 30 && g.lpNorm<Eigen::Infinity>() > 1e-12 * Fc; ++it) {
-      dT = G.partialPivLu().solve(-g);
-      double t = 1.0;
-      Eigen::VectorXd Tt(n_tca), gt(n_tca);
-      bool accepted = false;
-      for (int ls = 0; ls < 30 && !accepted; ++ls, t *= 0.5) {
-        Tt = T + t * dT;
-        try {
-          accepted = eval(Tt, gt, nullptr) && gt.squaredNorm() < g.squaredNorm();
-        } catch (const DomainError&) {
-          accepted = false;
-        }
-      }
-      if (!accepted) break;
-      T = Tt;
-      ok = eval(T, g, &G);
-    }
-  } catch (const DomainError&) {
-    ok = false;
-  }
-  if (ok && T.allFinite()) {
+  rod::GuessTensionOptions o;
+  o.tolerance_N = kGuessTensionTolerance * Fc;
+  Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca);
+  const bool ok = rod::solve_guess_tensions(model, act_of, scaled_segments, extra, o, cTs, T);
+  if (ok) {
     x.segment(6, n_tca) = T;
   } else {
     x.segment(6, n_tca).setZero();
@@ -131,34 +87,15 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
   for (int k = 0; k < n_tca; ++k) cTs[act_of[k]] = count[act_of[k]] * x[6 + k];
 }
 
-void ShootingSolver::Impl::closed_form_strains(const std::vector<double>& cTs, Vec3& e,
-                                               Vec3& omega) const {
-  double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
-  for (int i = 0; i < n_act; ++i) {
-    const Vec3 r = model.actuators[i].routing.r(0.0);
-    sum_T += cTs[i];
-    sum_Tx += cTs[i] * r.x();
-    sum_Ty += cTs[i] * r.y();
-  }
-  e = Vec3(0.0, 0.0, -sum_T / K_nu.z());
-  omega = omega_star + Vec3(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
-}
-
 void ShootingSolver::Impl::arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R,
                                     Vec3& p) const {
+  // [Sola2018] R = Exp(a) = I + a_c A + b_c A^2, V = s Jl(a) = s (I + b_c A + c_c A^2) with
+  // the series of common/lie_series.hpp (a_c = sin t / t, b_c = (1 - cos t) / t^2,
+  // c_c = (t - sin t) / t^3, t = |a|).
   const Vec3 a = s * omega;
-  const double th = a.norm();
   const Mat3 A = hat(a), A2 = A * A;
-  double c1, c2, c3;  // sin(th)/th, (1 - cos th)/th^2, (th - sin th)/th^3
-  if (th < 1e-4) {
-    c1 = 1.0 - th * th / 6.0;
-    c2 = 0.5 - th * th / 24.0;
-    c3 = 1.0 / 6.0 - th * th / 120.0;
-  } else {
-    c1 = std::sin(th) / th;
-    c2 = (1.0 - std::cos(th)) / (th * th);
-    c3 = (th - std::sin(th)) / (th * th * th);
-  }
+  const so3::Coefficients<double> k = so3::coefficients(a.squaredNorm());
+  const double c1 = k.a, c2 = k.b, c3 = k.c;
   R = model.R_WB0 * (Mat3::Identity() + c1 * A + c2 * A2);
   p = model.base_position_W_m + model.R_WB0 * (s * (nu + c2 * (A * nu) + c3 * (A2 * nu)));
 }

@@ -11,11 +11,7 @@
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 namespace {
 
@@ -139,7 +135,7 @@ bool ShootingSolver::Impl::newton_jacobian(const Actuation& act, double lambda,
 }
 
 Eigen::VectorXd ShootingSolver::Impl::typical_scale() const {
-  assert(!planar && "the planar reduction uses sensitivity Jacobians, never differences");
+  assert(x_tca == 6 && "the planar reduction uses sensitivity Jacobians, never differences");
   Eigen::VectorXd t(nx);
   t.head<3>() = Fc * K_nu_inv;  // the strain deviation of the characteristic force
   t.segment<3>(3).setConstant(1.0 / L);

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
-#include "cosserat/planar.hpp"
-
 namespace tcasim::cosserat::internal {
 
-RodProblem::RodProblem(const rod::RodModel& m, bool planar_layout)
-    : model(m), planar(planar_layout) {
+RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
+    : model(m),
+      x_tca(d.strain_unknowns),
+      strain_offset(d.strain_offset),
+      delta_offset(d.delta_offset) {
   n_act = static_cast<int>(model.actuators.size());
-  dim = state_dimension(model, planar);
-  x_tca = planar ? 3 : 6;
+  dim = delta_offset + n_act;
   L = model.length_m;
   K_nu = model.shear_extension_stiffness();
   K_omega = model.bending_torsion_stiffness();
@@ -85,11 +85,6 @@ void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& 
   Kw = model.bending_torsion_stiffness(s, side);
   ws = model.reference_curvature_at(s, side);
   wf = rho_A_ref > 0.0 ? model.mass_per_length_kg_m(s, side) / rho_A_ref : 1.0;
-}
-
-int RodProblem::state_dimension(const rod::RodModel& m, bool planar_state) {
-  return (planar_state ? planar::kDelta : state_layout::kDelta) +
-         static_cast<int>(m.actuators.size());
 }
 
 }  // namespace tcasim::cosserat::internal

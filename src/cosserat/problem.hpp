@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "cosserat/layout.hpp"
 #include "cosserat/shooting.hpp"
 #include "cosserat/string_system.hpp"
 #include "rod/model.hpp"
@@ -19,16 +20,13 @@ inline constexpr int kMaxSensitivityUnknowns = 16;
 inline bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
 struct RodProblem {
-  /// planar: the planar reduction's layout (cosserat/planar.hpp) instead of the 3-D one.
-  RodProblem(const rod::RodModel& m, bool planar);
-
-  /// IVP state dimension of `m` (3-D or planar layout).
-  static int state_dimension(const rod::RodModel& m, bool planar_state = false);
+  /// d: the sizes of the layout (cosserat/layout.hpp: 3-D or the planar reduction's).
+  RodProblem(const rod::RodModel& m, const LayoutDims& d);
 
   const rod::RodModel& model;
-  bool planar = false;
-  int x_tca =
-      6;  // index of the first TCA unknown: after nu(0), omega(0) (3-D) or their in-plane part
+  int x_tca = 6;  // index of the first TCA unknown: after the strain unknowns of the layout
+  int strain_offset = state_layout::kNu;    // index in y of the strains x[0, x_tca) set
+  int delta_offset = state_layout::kDelta;  // index of delta_0 in y
   int n_act = 0;
   int n_tca = 0;
   int nx = 0;

@@ -1,5 +1,7 @@
 #include "cosserat/rhs.hpp"
 
+#include <utility>
+
 #include "cosserat/string_system.hpp"
 #include "rod/closed_form.hpp"
 
@@ -7,29 +9,10 @@ namespace tcasim::cosserat::internal {
 
 using namespace state_layout;
 
-RodRhs::RodRhs(const rod::RodModel& m, bool planar_layout, bool sensitivities)
-    : RodProblem(m, planar_layout) {
+RodRhs::RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> l, bool sensitivities)
+    : RodProblem(m, l->dims()), layout(std::move(l)) {
   cT.assign(n_act, 0.0);
-  if (planar) {
-    prod.kn_x = K_nu.x();
-    prod.kn_z = K_nu.z();
-    prod.kw_y = K_omega.y();
-    for (int i = 0; i < n_act; ++i) {
-      prod.rho.push_back(model.actuators[i].routing.offset_m.x());
-      prod.length_ratio.push_back(length_ratio[i]);
-      prod.count.push_back(count[i]);
-      prod.direction_of.push_back(unknown_of[i]);
-    }
-    prod.cT.assign(n_act, 0.0);
-  }
   scaled_segments.resize(n_act);
-  if (planar) {
-    rhs = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
-      planar::rhs(prod, yy.data(), dy.data());
-    };
-  } else {
-    rhs = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) { eval_rhs(s, yy, dy); };
-  }
   cache.resize(n_act);
   if (!uniform) {
     pieces.knots = knots;
@@ -39,18 +22,9 @@ RodRhs::RodRhs(const rod::RodModel& m, bool planar_layout, bool sensitivities)
       return strain_jump(k, yy, nx);
     };
   }
-  if (sensitivities && nx <= kMaxSensitivityUnknowns) {
-    rhs_ws.resize(6, nx);
-    if (planar) {
-      rhs_sens = [this](double, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
-        planar::rhs_sens(prod, dim, nx, yy.data(), dy.data());
-      };
-    } else {
-      rhs_sens = [this](double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) {
-        eval_rhs_sens(s, yy, dy);
-      };
-    }
-  }
+  const bool with_sensitivities = sensitivities && nx <= kMaxSensitivityUnknowns;
+  if (with_sensitivities) rhs_ws.resize(6, nx);
+  layout->bind(*this, with_sensitivities);
 }
 
 // docs/conventions.md "Body-frame ODEs solved by the shooting solver".
@@ -334,25 +308,7 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
   } else {
     f_ext_W = lambda * rho_A_ref * act.gravity_W_m_s2;  // times weight_factor(s) in the RHS
   }
-  if (planar) {
-    prod.cT = cT;
-    const Vec3 f_B0 = model.R_WB0.transpose() * f_ext_W;
-    prod.f_x = f_B0.x();
-    prod.f_z = f_B0.z();
-  }
-}
-
-void RodRhs::initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
-  y0.setZero();
-  if (planar) {
-    y0[planar::kCS] = 1.0;                     // Rot_y(0) = I
-    y0.segment<3>(planar::kNu) = x.head<3>();  // (nu_x, nu_z - 1, kappa) are contiguous
-    return;
-  }
-  y0.segment<3>(kP) = model.base_position_W_m;
-  Eigen::Map<Mat3>(y0.data() + kR) = model.R_WB0;
-  y0.segment<3>(kNu) = x.head<3>();
-  y0.segment<3>(kOmega) = x.segment<3>(3);
+  layout->set_parameters(*this);
 }
 
 }  // namespace tcasim::cosserat::internal

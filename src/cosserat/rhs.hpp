@@ -2,14 +2,15 @@
 /// Right-hand side of the shooting IVP and of its forward sensitivities (the variational
 /// equations), docs/conventions.md "Body-frame ODEs solved by the shooting solver", with the
 /// IVP parameters (string tensions c_i T_i, distributed load) of the current evaluation.
-/// The planar reduction's right-hand sides are cosserat/planar.hpp's. Internal to the
-/// shooting solver.
+/// The layout (cosserat/layout.hpp) installs the right-hand sides the IVP integrates: these
+/// (3-D) or the planar reduction's (cosserat/planar.hpp). Internal to the shooting solver.
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "common/ode.hpp"
 #include "cosserat/integration_level.hpp"
-#include "cosserat/planar.hpp"
+#include "cosserat/layout.hpp"
 #include "cosserat/problem.hpp"
 #include "cosserat/shooting.hpp"
 #include "tca/tca.hpp"
@@ -17,9 +18,10 @@
 namespace tcasim::cosserat::internal {
 
 struct RodRhs : RodProblem {
+  /// layout: the state layout and its right-hand sides (cosserat/layout.hpp);
   /// sensitivities: also build the variational right-hand side `rhs_sens` (not with more
   /// than kMaxSensitivityUnknowns unknowns).
-  RodRhs(const rod::RodModel& m, bool planar, bool sensitivities);
+  RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> layout, bool sensitivities);
   RodRhs(const RodRhs&) = delete;  // the right-hand sides capture `this`
   RodRhs& operator=(const RodRhs&) = delete;
 
@@ -32,8 +34,10 @@ struct RodRhs : RodProblem {
   void eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const;
   /// Sets cT and f_ext for load fraction lambda and unknowns x; fills scaled segments.
   void set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x);
-  /// y(0) for unknowns x (3-D or planar layout).
-  void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const;
+  /// y(0) for unknowns x (the layout's state and unknowns).
+  void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
+    layout->initial_state(*this, x, y0);
+  }
 
   /// Stiffnesses (and reciprocals), omega* and weight factor at s: the constant members for
   /// a uniform body, else the model's values on the side of s inside the current piece.
@@ -70,9 +74,9 @@ struct RodRhs : RodProblem {
   std::vector<double> cT;  // count * tension per actuator
   Vec3 f_ext_W = Vec3::Zero();
   std::vector<std::vector<tca::Segment>> scaled_segments;  // TCA segments at the load fraction
-  planar::Rod prod;           // the planar reduction's rod and parameters (planar only)
-  ode::RhsFunction rhs;       // y' = f(s, y)
-  ode::RhsFunction rhs_sens;  // (y, Y_j)' (sensitivities only)
+  std::unique_ptr<Layout> layout;  // 3-D or the planar reduction (cosserat/layout.hpp)
+  ode::RhsFunction rhs;            // y' = f(s, y), installed by the layout
+  ode::RhsFunction rhs_sens;       // (y, Y_j)' (sensitivities only), installed by the layout
 
   /// Per-actuator quantities shared by the state and sensitivity parts of the RHS.
   struct ActuatorCache {

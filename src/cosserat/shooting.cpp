@@ -9,16 +9,12 @@
 #include <utility>
 
 #include "common/error.hpp"
-#include "cosserat/planar.hpp"
+#include "cosserat/layout.hpp"
 #include "cosserat/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 const char* to_string(Summary::Status s) {
   switch (s) {
@@ -41,10 +37,10 @@ const char* to_string(Summary::Status s) {
 }
 
 // ---------------------------------------------------------------------------------------
-ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o, Impl* parent_3d)
-    : TipConditions(m, parent_3d != nullptr, o.jacobian == JacobianMethod::kSensitivity),
+ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o,
+                           std::unique_ptr<internal::Layout> layout_)
+    : TipConditions(m, std::move(layout_), o.jacobian == JacobianMethod::kSensitivity),
       options(with_jacobian_fallback(validated(m, o), nx)),
-      parent(parent_3d),
       fine_level(dim, nx, options.integrator, options.kinematics,
                  options.jacobian == JacobianMethod::kSensitivity, piece_hooks()) {
   const bool sensitivities = options.jacobian == JacobianMethod::kSensitivity;
@@ -101,6 +97,18 @@ Options ShootingSolver::Impl::with_jacobian_fallback(Options o, int n_unknowns) 
 }
 
 Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
+  if (sol.valid && sol.unknowns.allFinite()) layout->reduce_unknowns(sol.unknowns);
+  Summary summary = solve_in_layout(act, sol);
+  summary.planar = layout->reduced();
+  if (sol.unknowns.size() == nx) layout->embed_unknowns(sol.unknowns);
+  if (sol.tip_state.size() == dim) {
+    layout->embed_state(sol.tip_state);
+    equilibrium(act, sol.unknowns, sol.tip_state, summary);  // cT, f_ext_W as finish() set
+  }
+  return summary;
+}
+
+Summary ShootingSolver::Impl::solve_in_layout(const Actuation& act, Solution& sol) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
   ivp_count = 0;
@@ -219,9 +227,8 @@ void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x
     summary.equilibrium_residual = equilibrium_residual(r, summary.characteristic_force_N);
   for (int i = 0; i < n_act; ++i) {
     sol.tensions_N[i] = cT[i] / count[i];
-    sol.elongations_m[i] = y[(planar ? planar::kDelta : kDelta) + i];
+    sol.elongations_m[i] = y[delta_offset + i];
   }
-  if (!planar) equilibrium(act, x, y, summary);  // planar: by the 3-D Impl after embedding
 }
 
 rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Solution& sol,
@@ -295,9 +302,9 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
 
 // ---------------------------------------------------------------------------------------
 ShootingSolver::ShootingSolver(const rod::RodModel& model, const Options& options)
-    : impl_(std::make_unique<Impl>(model, options)) {
-  if (Impl::planar_model(model, impl_->options)) {
-    planar_ = std::make_unique<Impl>(model, options, impl_.get());
+    : impl_(std::make_unique<Impl>(model, options, internal::make_3d_layout())) {
+  if (auto layout = internal::make_planar_layout(model, impl_->options)) {
+    reduced_ = std::make_unique<Impl>(model, options, std::move(layout));
   }
 }
 ShootingSolver::~ShootingSolver() = default;
@@ -305,14 +312,9 @@ ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
 
 Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
   if (actuation.load_scale != 1.0) return solve(actuation.applied(impl_->model), solution);
-  // The planar reduction needs a planar actuation and, for a warm start, in-plane unknowns
-  // (a 3-D equilibrium that left the plane stays a 3-D problem).
-  const bool out_of_plane_start =
-      solution.valid && solution.unknowns.size() == impl_->nx && !Impl::in_plane(solution.unknowns);
-  if (planar_ && impl_->planar_loads(actuation) && !out_of_plane_start) {
-    return impl_->solve_planar(*planar_, actuation, solution);
-  }
-  return impl_->solve(actuation, solution);
+  // The reduced layout (the planar reduction) solves what it admits, the 3-D one the rest.
+  Impl& solver = reduced_ && reduced_->layout->admits(actuation, solution) ? *reduced_ : *impl_;
+  return solver.solve(actuation, solution);
 }
 
 rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,

@@ -275,7 +275,7 @@ class ShootingSolver {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::unique_ptr<Impl> planar_;  ///< the planar reduction's solver (planar models only)
+  std::unique_ptr<Impl> reduced_;  ///< the planar reduction's solver (planar models only)
 };
 
 /// Convenience: solves the model's own actuation and returns the result.

@@ -1,8 +1,9 @@
 #pragma once
 /// The shooting solver's state behind ShootingSolver (cosserat/shooting.hpp): the layers
 /// RodProblem (constant layout, problem.hpp) <- RodRhs (IVP right-hand sides, rhs.hpp) <-
-/// TipConditions (residual rows, tip_conditions.hpp), plus the IVP levels and what the
-/// solver stages keep between calls. The stages are defined in one file each:
+/// TipConditions (residual rows, tip_conditions.hpp) on one Layout (layout.hpp: 3-D,
+/// layout_3d.cpp, or the planar reduction, planar_layout.cpp), plus the IVP levels and what
+/// the solver stages keep between calls. The stages are defined in one file each:
 ///   shooting.cpp          driver: construction, solve(), results
 ///   shooting_map.cpp      r(x) and dr/dx by one IVP on the active level, the IVP memo
 ///   newton.cpp            damped Newton, line search, Broyden updates, FD Jacobians,
@@ -10,10 +11,9 @@
 ///   warm_start.cpp        the multi-level start (coarse, middle/Richardson, coarse-grid
 ///                         correction), the path extrapolation of sweeps, TCA row refresh
 ///   initial_guess.cpp     the closed-form cold-start guess with gravity
-///   planar_embedding.cpp  when the planar reduction applies, and its unknowns and states
-///                         mapped to/from the 3-D layout
 /// Internal to the shooting solver.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,23 +24,36 @@
 
 namespace tcasim::cosserat {
 
+/// The names the stage files above use unqualified (`using namespace stage_names;`).
+namespace stage_names {
+using namespace state_layout;
+using internal::all_finite;
+using internal::Mat3;
+using internal::Vec3;
+using internal::Vec6;
+}  // namespace stage_names
+
 struct ShootingSolver::Impl : internal::TipConditions {
   using Vec3 = internal::Vec3;
   using Mat3 = internal::Mat3;
   using Vec6 = internal::Vec6;
   using IntegrationLevel = internal::IntegrationLevel;
 
-  /// parent_3d: the 3-D solver when this one is its planar reduction (planar_model holds).
-  Impl(const rod::RodModel& m, const Options& o, Impl* parent_3d = nullptr);
+  /// layout: 3-D (internal::make_3d_layout) or the planar reduction.
+  Impl(const rod::RodModel& m, const Options& o, std::unique_ptr<internal::Layout> layout);
 
   // --- driver (shooting.cpp)
   static Options validated(const rod::RodModel& m, Options o);
   /// Options::jacobian = kForwardDifference when nx > kMaxSensitivityUnknowns.
   static Options with_jacobian_fallback(Options o, int nx);
-  /// ShootingSolver::solve without the planar dispatch.
+  /// ShootingSolver::solve in this Impl's layout: sol's unknowns and tip state are 3-D on
+  /// entry and on return (the Jacobians, the coarse-level fields and the path stay in the
+  /// layout's unknowns); the global equilibrium is checked on the 3-D solution.
   Summary solve(const Actuation& act, Solution& sol);
-  /// Sets sol's unknowns, tensions, elongations and tip state at x (full load) and the
-  /// summary's global equilibrium (3-D only).
+  /// solve() with sol's unknowns and tip state in the layout's.
+  Summary solve_in_layout(const Actuation& act, Solution& sol);
+  /// Sets sol's unknowns, tensions, elongations and tip state at x (full load), and leaves
+  /// the IVP parameters set for x at full load.
   /// Summary::equilibrium_residual of the scaled residual r at full load, with F_c of the
   /// solve's loads (rod::characteristic_force_N, computed once per solve by finish()).
   double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
@@ -143,18 +156,15 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// `with_gravity`, the strains of gravity on that bent rod: a fixed-point iteration bends
   /// the arc by their mean and the unknowns take their value at the base. Without a converged
   /// fixed point gravity is ignored; *used_gravity tells whether it was included. Tip loads
-  /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria).
+  /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria). Computed in
+  /// the 3-D unknowns and returned in the layout's (Layout::reduce_unknowns).
   Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
                                 bool* used_gravity = nullptr);
-  /// TCA tensions of the guess: T_k = F_tca(delta_k(T)) with delta_k of the closed-form
-  /// strains plus `extra` (the mean load strains), by a small damped Newton iteration
-  /// (dT/d delta from the closed form); sets x's TCA entries (0 if it fails) and their
-  /// c T in cTs (known tensions as set by set_parameters).
+  /// TCA tensions of the guess (rod::solve_guess_tensions): T_k = F_tca(delta_k(T)) with
+  /// delta_k of the closed-form strains plus `extra` (the mean load strains); sets the TCA
+  /// entries of the 3-D unknowns x (0 if it fails) and their c T in cTs (known tensions as
+  /// set by set_parameters).
   void guess_tensions(const Vec6& extra, std::vector<double>& cTs, Eigen::VectorXd& x);
-  /// Constant strains of the closed form (docs/conventions.md) for tensions cT (count x
-  /// tension per actuator), offsets taken at s = 0: e = nu - nu* (the deviation, no
-  /// cancellation) and omega (the reference curvature plus the deviation).
-  void closed_form_strains(const std::vector<double>& cTs, Vec3& e, Vec3& omega) const;
   /// Pose at arc length s of a rod with constant strains (nu, omega) from the base pose:
   /// R = R0 exp(s hat(omega)), p = p0 + R0 V nu with V = int_0^s exp(t hat(omega)) dt.
   void arc_pose(const Vec3& nu, const Vec3& omega, double s, Mat3& R, Vec3& p) const;
@@ -164,33 +174,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// over s and their value at s = 0.
   void load_strains(const Vec3& nu, const Vec3& omega, Vec6& mean, Vec6& base) const;
 
-  // --- planar reduction (planar_embedding.cpp)
-  /// Whether the model and options admit the planar reduction (cosserat/planar.hpp): straight
-  /// strings on the body x axis, reference curvature about y, no tip constraint, a fixed-step
-  /// flat integration with sensitivity Jacobians, and at most planar::kMaxActuators actuators
-  /// and planar::kMaxDirections unknowns. The actuation is checked per solve (planar_loads).
-  static bool planar_model(const rod::RodModel& m, const Options& o);
-  /// Whether the actuation keeps a planar model in its plane: gravity and tip force without
-  /// a component along R_WB0 e_y, the tip moment along it only (exact tests).
-  bool planar_loads(const Actuation& act) const;
-  /// Solves a planar problem (planar_model and planar_loads hold) with the planar Impl `p`:
-  /// the unknowns and tip state of `sol` are 3-D on entry and on return (the Jacobians, the
-  /// coarse-level fields and the path stay in p's reduced unknowns); the global equilibrium
-  /// is checked on the embedded 3-D solution.
-  Summary solve_planar(Impl& p, const Actuation& act, Solution& sol);
-  /// Planar reduction: the in-plane unknowns (nu_x, nu_z - 1, omega_y, T_tca...) of 3-D unknowns.
-  Eigen::VectorXd reduce(const Eigen::VectorXd& x3) const;
-  /// Whether 3-D unknowns lie in the plane of the planar reduction (exact zeros).
-  static bool in_plane(const Eigen::VectorXd& x3);
-  /// Planar reduction: the 3-D unknowns of reduced ones.
-  Eigen::VectorXd embed_unknowns(const Eigen::VectorXd& x) const;
-  /// Planar reduction: the 3-D IVP state (layout of shooting.hpp) of a planar one.
-  Eigen::VectorXd embed_state(const Eigen::VectorXd& yp) const;
-
   Options options;
-  // Planar reduction (cosserat/planar.hpp): this Impl solves the reduced problem, with the
-  // 3-D Impl `parent` for what is only needed once per solve (the initial guess).
-  Impl* parent = nullptr;
   // IVP levels: the fine one (Options::integrator), the coarse one (Options::coarse_steps)
   // and, for cold starts, a middle one with 2 x coarse_steps (when 4 x coarse_steps <=
   // steps): the fine start is the Richardson extrapolation of the coarse and middle

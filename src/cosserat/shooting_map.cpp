@@ -1,15 +1,10 @@
 // The shooting map: r(x) and dr/dx by one IVP from the unknowns x on the active level, and
 // the memo of the last accepted IVP.
-#include "cosserat/planar.hpp"
 #include "cosserat/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                                     Eigen::VectorXd& r) {
@@ -33,8 +28,8 @@ bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double la
   Y.setZero();
   initial_state(x, y);
   Y.head(dim) = y;
-  // d y(0) / d (nu0, omega0) (planar: d y(0) / d (nu_x0, nu_z0, kappa0))
-  for (int j = 0; j < x_tca; ++j) Y[dim * (j + 1) + (planar ? planar::kNu : kNu) + j] = 1.0;
+  // d y(0) / d x_j = e_{strain_offset + j} for the strain unknowns (the layout's)
+  for (int j = 0; j < x_tca; ++j) Y[dim * (j + 1) + strain_offset + j] = 1.0;
   ++ivp_count;
   if (!level->integrate_sensitivities(rhs_sens, L, Y)) return false;
   y = Y.head(dim);

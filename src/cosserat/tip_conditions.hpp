@@ -5,6 +5,7 @@
 /// chain rule from the IVP's forward sensitivities to dr/dx, and the global equilibrium
 /// check of a solution. Internal to the shooting solver.
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "cosserat/rhs.hpp"
@@ -13,28 +14,24 @@
 namespace tcasim::cosserat::internal {
 
 struct TipConditions : RodRhs {
-  TipConditions(const rod::RodModel& m, bool planar, bool sensitivities);
+  TipConditions(const rod::RodModel& m, std::unique_ptr<Layout> layout, bool sensitivities);
 
   // docs/conventions.md "Tip conditions" (body frame), scaled.
   /// Scaled residual r (size nx) at unknowns x with y(L) = yL; cT and the scaled segments
-  /// set for x (RodRhs::set_parameters). False when a TCA law fails or r is not finite.
-  // docs/conventions.md "Tip conditions" (body frame), scaled.
+  /// set for x (RodRhs::set_parameters): the layout's tip rows (Layout::tip_rows) and the
+  /// TCA rows. False when a TCA law fails or r is not finite.
   bool tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& yL, Eigen::VectorXd& r);
   /// TCA rows r_k = phi(T_k, delta_k(L)) / F_c (tca::contact_residual: the free-coil law
   /// T_k - F_tca(delta_k) with coil contact) with delta at yL[delta0 + i]; sets dphi_dT and
   /// dphi_ddelta. False when a TCA law fails or r is not finite.
-  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, int delta0,
-                Eigen::VectorXd& r);
+  bool tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL, Eigen::VectorXd& r);
   /// dr/dx (nx x nx) at x from y(L) = y and the augmented state Y(L) = (y, dy/dx_0, ...)
   /// of the sensitivity IVP (chain rule: dr = (dr/dy) Y(L) + dr/dT), after tip_residual at
-  /// the same point (its dphi_dT, dphi_ddelta). False when J is not finite.
+  /// the same point (its dphi_dT, dphi_ddelta): the layout's tip rows
+  /// (Layout::tip_rows_jacobian) and the TCA rows. False when J is not finite.
   bool tip_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& y, const Eigen::VectorXd& Y, Eigen::MatrixXd& J) const;
-  /// Planar reduction: the Jacobian of the scaled residual from the sensitivities in Y (the
-  /// tip wrench rows by planar::tip_wrench_sens, the TCA rows by the chain rule).
-  bool planar_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& Y,
-                       Eigen::MatrixXd& J) const;
   /// Tip force the holder applies to the rod (world frame) for unknowns x; 0 without a
   /// tip constraint.
   Vec3 reaction_W(const Eigen::VectorXd& x) const;

@@ -12,11 +12,7 @@
 
 namespace tcasim::cosserat {
 
-using namespace state_layout;
-using internal::all_finite;
-using internal::Mat3;
-using internal::Vec3;
-using internal::Vec6;
+using namespace stage_names;
 
 namespace {
 
