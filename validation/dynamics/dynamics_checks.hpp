@@ -528,4 +528,32 @@ inline ForcedRun forced_run(const rod::RodModel& m, const cosserat::DynamicsOpti
   return out;
 }
 
+/// A uniform steel rod along +z (E 200 GPa, poisson 0.25, rho 8000 kg/m^3, circular section of
+/// radius r): the cantilever of [Till2019]'s dynamics example at r = 1 mm, L = 0.5 m; the
+/// slender rod of the frequency checks at r = 0.5 mm.
+inline rod::RodModel steel_rod(double r_m, double length_m) {
+  rod::RodModel m;
+  m.name = "steel-cantilever";
+  m.length_m = length_m;
+  const double d = 2.0 * r_m;
+  m.section.shape = rod::Section::Shape::kCircle;
+  m.section.width_m = d;
+  m.section.height_m = d;
+  m.section.area_m2 = kPi * d * d / 4.0;
+  m.section.I_x_m4 = kPi * std::pow(d, 4) / 64.0;
+  m.section.I_y_m4 = m.section.I_x_m4;
+  m.section.J_m4 = 2.0 * m.section.I_x_m4;
+  m.material.youngs_modulus_Pa = 200e9;
+  m.material.poisson_ratio = 0.25;
+  m.material.shear_modulus_Pa = 200e9 / 2.5;
+  m.material.density_kg_m3 = 8000.0;
+  return m;
+}
+
+/// Smoothstep 3 u^2 - 2 u^3 on [0, 1] (0 before, 1 after).
+inline double smoothstep(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
 }  // namespace tcasim::dynamics_checks
