@@ -162,7 +162,7 @@ inline std::vector<double> timoshenko_frequencies_rad_s(const Beam& b, int count
   std::vector<double> w;
   for (const double we : eb) {
     auto f = [&](double om) { return timoshenko_determinant(b, om, steps); };
-    w.push_back(scan_roots(f, 0.95 * we, 1.0 + 1e-9 * we + we, 1, 200, 1e-13 * we).front());
+    w.push_back(scan_roots(f, 0.95 * we, 1.0 + 1e-9 * we + we, 1, 20, 1e-13 * we).front());
   }
   return w;
 }
