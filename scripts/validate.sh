@@ -34,6 +34,7 @@ programs=(
   "validate_fig8_force|plot_fig8.py|"
   "validate_crosscheck|plot_crosscheck.py|"
   "validate_convergence|plot_convergence.py|"
+  "validate_dynamics|plot_dynamics.py|"
 )
 echo "[validate] 3/5 validation programs -> $out"
 failed=()

@@ -1,0 +1,115 @@
+#!/usr/bin/python3
+"""Plots the CSV files of validate_dynamics: dynamics_release.png (released cantilever: tip
+trajectory and energies), dynamics_energy.png (pulse-forced rod: energy, work, dissipation and
+the balance residual), dynamics_orders.png (errors against dt and ramp rate with the observed
+orders).
+
+Usage: /usr/bin/python3 scripts/plot_dynamics.py OUT_DIR
+"""
+import csv
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def column(rows, key):
+    return [float(r[key]) for r in rows]
+
+
+def plot_release(out_dir):
+    rows = read(f"{out_dir}/release.csv")
+    t = column(rows, "t_s")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.6))
+    a.plot(t, [1e3 * v for v in column(rows, "tip_x_m")], label="tip x")
+    a.plot(t, [1e3 * (v - 0.5) for v in column(rows, "tip_z_m")], label="tip z - L")
+    a.set_xlabel("t [s]")
+    a.set_ylabel("tip displacement [mm]")
+    a.set_title("Released steel cantilever: tip")
+    a.grid(alpha=0.3)
+    a.legend()
+    for key, label in (("kinetic_J", "kinetic"), ("potential_J", "potential"), ("total_J", "total")):
+        b.plot(t, [1e3 * v for v in column(rows, key)], label=label)
+    b.set_xlabel("t [s]")
+    b.set_ylabel("energy [mJ]")
+    b.set_title("Released steel cantilever: energies")
+    b.grid(alpha=0.3)
+    b.legend()
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_release.png", dpi=110)
+    plt.close(fig)
+
+
+def plot_energy(out_dir):
+    rows = read(f"{out_dir}/energy.csv")
+    cases = defaultdict(list)
+    for r in rows:
+        cases[r["case"]].append(r)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6))
+    for ax, name in zip(axes, ("undamped", "damped")):
+        rs = cases.get(name, [])
+        if not rs:
+            continue
+        t = column(rs, "t_s")
+        for key, label in (("energy_J", "E (kinetic + strain)"), ("work_J", "work in W"),
+                           ("dissipated_J", "dissipated D"), ("balance_J", "E - E0 + D - W")):
+            ax.plot(t, [1e6 * v for v in column(rs, key)], label=label)
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("energy [uJ]")
+        ax.set_title(f"sin^2 tip-force pulse, {name}, dt 1 ms")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_energy.png", dpi=110)
+    plt.close(fig)
+
+
+def plot_orders(out_dir):
+    studies = defaultdict(list)
+    for name in ("dt_order.csv", "quasi_static_order.csv"):
+        path = f"{out_dir}/{name}"
+        if os.path.exists(path):
+            for r in read(path):
+                studies[r["study"]].append(r)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for study, rs in studies.items():
+        h, e = column(rs, "h"), column(rs, "error")
+        orders = [r["observed_order"] for r in rs if r["observed_order"]]
+        label = f"{study} [{', '.join(f'{float(o):.2f}' for o in orders)}]"
+        ax = b if "quasi-static" in study else a
+        ax.loglog(h, e, marker="o", label=label)
+    a.set_xlabel("dt [s]")
+    a.set_ylabel("error (relative)")
+    a.set_title("Order in dt (observed orders in brackets)")
+    b.set_xlabel("ramp rate 1 / tau [1/s]")
+    b.set_ylabel("largest gap / L")
+    b.set_title("Quasi-static limit")
+    for ax in (a, b):
+        ax.grid(True, which="both", alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_orders.png", dpi=110)
+    plt.close(fig)
+
+
+def main(out_dir):
+    plot_release(out_dir)
+    plot_energy(out_dir)
+    plot_orders(out_dir)
+    print(f"wrote {out_dir}/dynamics_release.png, dynamics_energy.png, dynamics_orders.png")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
