@@ -72,7 +72,7 @@ TEST(DynamicsChecks, FirstModeOfTheCantileverWithAndWithoutTipMass) {
     SCOPED_TRACE(mu);
     DynamicsOptions o = options_at(m, 1e-3);
     o.tip_mass_kg = mu * b0.rhoA * b0.L;
-    const double w1 = dc::eb_frequencies_rad_s(dc::beam_of(m, o.tip_mass_kg), 1)[0];
+    const double w1 = dc::eb_frequencies_rad_s(dc::beam_of(m, *o.tip_mass_kg), 1)[0];
     const dc::FreeVibration fv =
         dc::free_vibration(m, o, tip_force_for(m, 1e-4), 2.0 * 2.0 * dc::kPi / w1, 1);
     ASSERT_TRUE(fv.converged) << fv.message;

@@ -151,7 +151,7 @@ void free_vibration(Gates& g, const std::string& out, bool quick) {
   for (const double mu : {0.0, 0.5}) {
     cosserat::DynamicsOptions o = options_at(m, dt);
     o.tip_mass_kg = mu * b0.rhoA * b0.L;
-    const double w1 = dc::eb_frequencies_rad_s(dc::beam_of(m, o.tip_mass_kg), 1)[0];
+    const double w1 = dc::eb_frequencies_rad_s(dc::beam_of(m, *o.tip_mass_kg), 1)[0];
     const int every = quick ? 1 : 4;
     const dc::FreeVibration fv = dc::free_vibration(
         m, o, tip_force_for(m, 1e-4), (quick ? 2.0 : 1.0) * 2.0 * dc::kPi / w1, modes, every);

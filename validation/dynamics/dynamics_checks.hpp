@@ -345,7 +345,7 @@ inline FreeVibration free_vibration(const rod::RodModel& m, cosserat::DynamicsOp
                                     double fx_N, double duration_s, int modes,
                                     int sample_every = 1) {
   FreeVibration out;
-  const Beam b = beam_of(m, o.tip_mass_kg);
+  const Beam b = beam_of(m, o.tip_mass_kg.value_or(m.tip_mass_kg));
   const int K = modes + 1;
   const std::vector<double> roots = eb_cantilever_roots(b.mu(), K);
   const std::vector<double> w_eb = eb_frequencies_rad_s(b, K);
@@ -423,7 +423,7 @@ class DissipationMeter {
  public:
   DissipationMeter(const rod::RodModel& m, const cosserat::DynamicsOptions& o) : o_(o) {
     const Eigen::Vector3d kse = m.shear_extension_stiffness(), kbt = m.bending_torsion_stiffness();
-    const double eta = o.viscosity_Pa_s, eta_s = eta / (2.0 * (1.0 + m.material.poisson_ratio));
+    const double eta = o.viscosity_Pa_s.value_or(m.material.viscosity_Pa_s), eta_s = eta / (2.0 * (1.0 + m.material.poisson_ratio));
     const auto& sec = m.section;
     K_ << kse, kbt;
     B_ << eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2, eta * sec.I_x_m4,
