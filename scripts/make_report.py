@@ -125,6 +125,8 @@ PLOT_DESCRIPTIONS = {
     "dynamics_release.png": "Rod dynamics: tip trajectory and energies of the released steel cantilever",
     "dynamics_energy.png": "Rod dynamics: energy, work in, dissipated energy and balance residual under a "
                            "tip-force pulse, undamped and damped",
+    "dynamics_voltage_step.png": "Rod dynamics: voltage step on the circular manipulator, TCA "
+    "temperature against the closed-form step response and the tip settling to the static answer",
     "dynamics_orders.png": "Rod dynamics: errors against dt (frequencies, energy drift and balance, forced "
                            "trajectory) and the quasi-static gap against the ramp rate, with observed orders",
 }

@@ -102,11 +102,42 @@ def plot_orders(out_dir):
     plt.close(fig)
 
 
+def plot_voltage_step(out_dir):
+    """Voltage step on the circular manipulator (full run only; skipped when absent)."""
+    path = f"{out_dir}/voltage_step.csv"
+    if not os.path.exists(path):
+        return False
+    rows = read(path)
+    t = column(rows, "t_s")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.6))
+    a.plot(t, column(rows, "temperature_degC"), label="TCA temperature (dynamics)")
+    a.plot(t, column(rows, "closed_form_temperature_degC"), "--", label="closed-form step response")
+    a.set_xlabel("t [s]")
+    a.set_ylabel("temperature [degC]")
+    a.set_title("Voltage step: TCA temperature")
+    a.grid(alpha=0.3)
+    a.legend()
+    for key, skey, label in (("tip_x_m", "static_tip_x_m", "x"), ("tip_z_m", "static_tip_z_m", "z")):
+        line, = b.plot(t, [1e3 * v for v in column(rows, key)], label=f"tip {label}")
+        b.plot(t, [1e3 * v for v in column(rows, skey)], ":", color=line.get_color(),
+               label=f"static at the steady temperature ({label})")
+    b.set_xlabel("t [s]")
+    b.set_ylabel("tip position [mm]")
+    b.set_title("Voltage step: tip of the manipulator")
+    b.grid(alpha=0.3)
+    b.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_voltage_step.png", dpi=110)
+    plt.close(fig)
+    return True
+
+
 def main(out_dir):
     plot_release(out_dir)
     plot_energy(out_dir)
     plot_orders(out_dir)
-    print(f"wrote {out_dir}/dynamics_release.png, dynamics_energy.png, dynamics_orders.png")
+    extra = ", dynamics_voltage_step.png" if plot_voltage_step(out_dir) else ""
+    print(f"wrote {out_dir}/dynamics_release.png, dynamics_energy.png, dynamics_orders.png{extra}")
 
 
 if __name__ == "__main__":
