@@ -83,7 +83,8 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
       const int i = act_of[k];
       const rod::Routing& ro = model.actuators[i].routing;
       const double delta =
-          L * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() - model.actuators[i].rest_length_m;
+          (span_hi[i] - span_lo[i]) * (nu + omega.cross(ro.r(0.0)) + ro.dr(0.0)).norm() -
+          model.actuators[i].rest_length_m;
       const tca::ContactResidual c =
           tca::contact_residual(*model.actuators[i].drive.tca, Tk[k], delta, scaled_segments[i]);
       gk[k] = c.phi_N;
@@ -92,9 +93,11 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
         for (int l = 0; l < n_tca; ++l) {
           const Vec3 rl = model.actuators[act_of[l]].routing.r(0.0);
           // d delta_k / d T_l = -L C_kl c_l (closed form)
-          const double C =
-              1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() + ri.x() * rl.x() / K_omega.y();
-          (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) - c.dphi_ddelta_N_m * L * C * count[act_of[l]];
+          const double C = from_base(act_of[l]) ? 1.0 / K_nu.z() + ri.y() * rl.y() / K_omega.x() +
+                                                      ri.x() * rl.x() / K_omega.y()
+                                                : 0.0;
+          (*Gk)(k, l) = (k == l ? c.dphi_dF : 0.0) -
+                        c.dphi_ddelta_N_m * (span_hi[i] - span_lo[i]) * C * count[act_of[l]];
         }
       }
     }
@@ -135,6 +138,7 @@ void ShootingSolver::Impl::closed_form_strains(const std::vector<double>& cTs, V
                                                Vec3& omega) const {
   double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
   for (int i = 0; i < n_act; ++i) {
+    if (!from_base(i)) continue;  // no share of the base wrench
     const Vec3 r = model.actuators[i].routing.r(0.0);
     sum_T += cTs[i];
     sum_Tx += cTs[i] * r.x();

@@ -19,7 +19,7 @@ bool ShootingSolver::Impl::planar_model(const rod::RodModel& m, const Options& o
   }
   // The planar right-hand sides have constant properties: a body that varies along s is
   // solved in 3-D (its pieces and jumps are RodRhs's).
-  if (!m.uniform_body()) return false;
+  if (!m.uniform_body() || m.has_inner_anchors()) return false;
   if (m.reference_curvature_B_1_m.x() != 0.0 || m.reference_curvature_B_1_m.z() != 0.0) {
     return false;
   }

@@ -48,7 +48,7 @@ bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eige
   Vec3 rm = K_omega_tip.cwiseProduct(omega - omega_star_tip) -
             R.transpose() * (lambda * act.tip_moment_W_Nm);
   for (int i = 0; i < n_act; ++i) {
-    if (cT[i] == 0.0) continue;
+    if (cT[i] == 0.0 || !to_tip(i)) continue;  // a string anchored before L: not at the tip
     const Vec3 ri = model.actuators[i].routing.r(L);
     const Vec3 q = nu + omega.cross(ri) + model.actuators[i].routing.dr(L);
     const Vec3 qh = q.normalized();
@@ -99,7 +99,7 @@ bool TipConditions::tip_jacobian(const Actuation& act, double lambda, const Eige
     Vec3 drm = K_omega_tip.cwiseProduct(dom) - dR.transpose() * M_e;
     for (int i = 0; i < n_act; ++i) {
       const double dcT = unknown_of[i] == j ? count[i] : 0.0;
-      if (cT[i] == 0.0 && dcT == 0.0) continue;
+      if ((cT[i] == 0.0 && dcT == 0.0) || !to_tip(i)) continue;
       const rod::Routing& ro = model.actuators[i].routing;
       const Vec3 ri = ro.r(L);
       const Vec3 q = nu + omega.cross(ri) + ro.dr(L);
@@ -167,6 +167,8 @@ void TipConditions::equilibrium(const Actuation& act, const Eigen::VectorXd& x,
   Vec3 n_exp = F_tip + weight_length * w;
   Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - weight_length * p0).cross(w);
   for (int i = 0; i < n_act; ++i) {
+    // A string anchored at both ends inside the body loads it with a self-balanced system.
+    if (!from_base(i)) continue;
     const rod::Routing& ro = model.actuators[i].routing;
     const Vec3 r0 = ro.r(0.0);
     const Vec3 t0 =
