@@ -40,14 +40,15 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");
   h_m_ = model.length_m / elements_;
-  if (model.uniform_body()) {
+  if (model.uniform_body() && !model.has_inner_anchors()) {
     element_h_m_.assign(static_cast<std::size_t>(elements_), h_m_);
     for (int e = 0; e < elements_; ++e) {
       element_s0_m_.push_back(model.length_m * (e * order_) / (elements_ * order_));
     }
   } else {
-    // A node at every breakpoint; equal elements on each piece, in proportion to its length.
-    std::vector<double> knots = model.breakpoints();
+    // A node at every breakpoint and string anchor; equal elements on each piece, in
+    // proportion to its length.
+    std::vector<double> knots = model.interior_knots();
     knots.insert(knots.begin(), 0.0);
     knots.push_back(model.length_m);
     for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
@@ -156,10 +157,11 @@ State Discretization::reference_state() const {
   State st;
   const int nodes = node_count();
   const Eigen::Quaterniond q0(model.R_WB0);
-  if (!model.uniform_body()) {
-    // omega* varies: the stress-free shape R' = R hat(omega*(s)), p' = R e3 by constant-
-    // curvature arcs at the midpoint curvature of kSubsteps substeps per node interval (second
-    // order; only the starting configuration and the constraint ramp's start use it).
+  if (!model.uniform_body() || model.has_inner_anchors()) {
+    // omega* varies (or the mesh is aligned to string anchors): the stress-free shape R' = R
+    // hat(omega*(s)), p' = R e3 by constant- curvature arcs at the midpoint curvature of kSubsteps
+    // substeps per node interval (second order; only the starting configuration and the constraint
+    // ramp's start use it).
     constexpr int kSubsteps = 64;
     Eigen::Quaterniond q = q0;
     Vector3d p = model.base_position_W_m;
@@ -247,7 +249,9 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   const std::size_t n_act = model.actuators.size();
   if (n_act == 0) return false;  // the guess would be the reference configuration itself
   for (const rod::Actuator& a : model.actuators) {
-    if (a.routing.type != rod::Routing::Type::kStraight) return false;
+    // The closed form has strings from base to tip.
+    if (a.routing.type != rod::Routing::Type::kStraight || a.anchored_inside(model.length_m))
+      return false;
   }
   // The closed form (rod/closed_form.hpp) of the tension drives, with the TCA tensions
   // solving phi_i(T_i, delta_i(T)) = 0 (the TCA law with coil contact) at its elongations

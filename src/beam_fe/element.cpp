@@ -135,6 +135,14 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   Vector3d K_omega = model.bending_torsion_stiffness();
   Vector3d omega_ref = model.reference_curvature_B_1_m;
   const std::size_t n_act = model.actuators.size();
+  // A string anchored inside the body runs along the elements of its span only (the mesh
+  // has nodes at the anchors): its potential c T l over the span.
+  const double s_mid_m = state.s_m[first] + 0.5 * h_m_;
+  std::vector<char> runs(n_act, 1);
+  for (std::size_t i = 0; i < n_act; ++i) {
+    const rod::Actuator& a = model.actuators[i];
+    runs[i] = a.span_start_m() < s_mid_m && s_mid_m < a.span_end_m(model.length_m);
+  }
 
   // Node map u(theta): y_a = R_r^T (p_a - p_r), psi_a = log(R_r^T R_a).
   std::array<Vector3d, n> y, psi;
@@ -203,6 +211,10 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     C.diagonal() << K_nu, K_omega;
     std::vector<Vector6d> dl_eps(n_act);
     for (std::size_t i = 0; i < n_act; ++i) {
+      if (!runs[i]) {
+        dl_eps[i].setZero();
+        continue;
+      }
       const rod::Routing& route = model.actuators[i].routing;
       const Vector3d r = route.r(s_m);
       // [Pawlowski2019] Eq. (19): q = nu + omega x r + r'.

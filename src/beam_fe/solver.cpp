@@ -393,8 +393,9 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   res.scenario = model.name;
   res.method = "fe";
   // The mesh's element count (a body that varies along s: aligned to its breakpoints).
-  const int elements =
-      model.uniform_body() ? options.elements : Discretization(model, options).element_count();
+  const int elements = model.uniform_body() && !model.has_inner_anchors()
+                           ? options.elements
+                           : Discretization(model, options).element_count();
   res.discretization = {{"elements", elements}, {"order", options.order}};
   res.converged = summary.converged();
   res.status = to_string(summary.status);

@@ -113,6 +113,11 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
       tca_slot[i] = n_tca++;
       tca_actuator.push_back(i);
     }
+    if (a.anchored_inside(model.length_m)) {
+      throw DomainError("rod dynamics: actuator '" + a.name +
+                        "' is anchored inside the body (span_m); dynamics supports strings from "
+                        "base to tip only so far");
+    }
     length_ratio.push_back(a.rest_length_m / model.length_m);
     count.push_back(static_cast<double>(a.count));
   }

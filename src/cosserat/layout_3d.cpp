@@ -55,7 +55,7 @@ class Layout3d final : public Layout {
     Vec3 rm = p.K_omega_tip.cwiseProduct(omega - p.omega_star_tip) -
               R.transpose() * (lambda * act.tip_moment_W_Nm);
     for (int i = 0; i < p.n_act; ++i) {
-      if (p.cT[i] == 0.0) continue;
+      if (p.cT[i] == 0.0 || !p.to_tip(i)) continue;  // a string anchored before L: not at the tip
       const Vec3 ri = model.actuators[i].routing.r(p.L);
       const Vec3 q = nu + omega.cross(ri) + model.actuators[i].routing.dr(p.L);
       const Vec3 qh = q.normalized();
@@ -86,7 +86,7 @@ class Layout3d final : public Layout {
       Vec3 drm = p.K_omega_tip.cwiseProduct(dom) - dR.transpose() * M_e;
       for (int i = 0; i < p.n_act; ++i) {
         const double dcT = p.unknown_of[i] == j ? p.count[i] : 0.0;
-        if (p.cT[i] == 0.0 && dcT == 0.0) continue;
+        if ((p.cT[i] == 0.0 && dcT == 0.0) || !p.to_tip(i)) continue;
         const rod::Routing& ro = model.actuators[i].routing;
         const Vec3 ri = ro.r(p.L);
         const Vec3 q = nu + omega.cross(ri) + ro.dr(p.L);

@@ -25,7 +25,9 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
       unknown_of[i] = x_tca + n_tca++;
       act_of.push_back(i);
     }
-    length_ratio.push_back(a.rest_length_m / L);
+    span_lo.push_back(a.span_start_m());
+    span_hi.push_back(a.span_end_m(L));
+    length_ratio.push_back(a.rest_length_m / (span_hi.back() - span_lo.back()));
     count.push_back(static_cast<double>(a.count));
     straight.push_back(a.routing.type == rod::Routing::Type::kStraight);
   }
@@ -77,6 +79,7 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
     }
     weight_length = rho_A_ref > 0.0 ? mass / rho_A_ref : L;
   }
+  add_anchor_knots();
 }
 
 void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,

@@ -60,6 +60,20 @@ struct RodProblem {
   /// (L for a uniform body).
   double rho_A_ref = 0.0;
   double weight_length = 0.0;
+  // Strings anchored inside the body (rod::Actuator::span_m; cosserat/string_jumps.cpp): the
+  // anchors are knots too (a uniform body with anchors has knots 0, L/2, L and the anchors),
+  // a jump there moves the string's share of the section wrench to the rod, and
+  // string_runs[piece][i] says whether string i runs along piece [knots[piece],
+  // knots[piece + 1]] (empty: every string runs everywhere). span_lo, span_hi per actuator.
+  std::vector<double> span_lo, span_hi;
+  std::vector<std::vector<char>> string_runs;
+  /// Adds the anchors to the knots (called by the constructor).
+  void add_anchor_knots();
+  bool runs(std::size_t piece, int i) const {
+    return string_runs.empty() || string_runs[piece][static_cast<std::size_t>(i)] != 0;
+  }
+  bool from_base(int i) const { return span_lo[static_cast<std::size_t>(i)] == 0.0; }
+  bool to_tip(int i) const { return span_hi[static_cast<std::size_t>(i)] == L; }
   /// The stiffnesses, omega* and weight factor at s (one-sided limit `side` at a jump).
   void properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
 };

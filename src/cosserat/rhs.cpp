@@ -1,5 +1,6 @@
 #include "cosserat/rhs.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "cosserat/string_system.hpp"
@@ -14,9 +15,13 @@ RodRhs::RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> l, bool sensitivi
   cT.assign(n_act, 0.0);
   scaled_segments.resize(n_act);
   cache.resize(n_act);
-  if (!uniform) {
+  if (!knots.empty()) {
     pieces.knots = knots;
-    pieces.enter = [this](double lo, double hi) { piece_mid = 0.5 * (lo + hi); };
+    pieces.enter = [this](double lo, double hi) {
+      piece_mid = 0.5 * (lo + hi);
+      piece = static_cast<std::size_t>(std::lower_bound(knots.begin(), knots.end(), lo) -
+                                       knots.begin());
+    };
     pieces.jump = [this](std::size_t k, Eigen::VectorXd& yy) { return strain_jump(k, yy, 0); };
     pieces.jump_sens = [this](std::size_t k, Eigen::VectorXd& yy) {
       return strain_jump(k, yy, nx);
@@ -50,6 +55,10 @@ void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) 
     b_omega += k.Kw.cwiseProduct(k.dws) - k.dKw.cwiseProduct(omega - k.ws);
   }
   for (int i = 0; i < n_act; ++i) {
+    if (!runs(piece, i)) {  // outside the string's span: no string, no elongation
+      dy[kDelta + i] = 0.0;
+      continue;
+    }
     const rod::Routing& routing = model.actuators[i].routing;
     Vec3 r, dr, ddr;
     if (straight[i]) {
@@ -113,6 +122,10 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
   }
   for (int i = 0; i < n_act; ++i) {
     ActuatorCache& c = cache[i];
+    if (!runs(piece, i)) {
+      dY[kDelta + i] = 0.0;
+      continue;
+    }
     const rod::Routing& routing = model.actuators[i].routing;
     Vec3 ddr;
     if (straight[i]) {
@@ -170,6 +183,10 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
       db_om -= k.dKw.cwiseProduct(dom);
     }
     for (int i = 0; i < n_act; ++i) {
+      if (!runs(piece, i)) {
+        dyj[kDelta + i] = 0.0;
+        continue;
+      }
       const ActuatorCache& c = cache[i];
       const Vec3 dq = dnu + dom.cross(c.r);
       const double dqn = c.qh.dot(dq);
@@ -211,8 +228,8 @@ struct SectionWrench {
   std::vector<Vec6> u;  // per actuator: (qh_i, r_i x qh_i)
 };
 
-void section_wrench(const RodRhs& p, double s, const RodRhs::Local& k, const Vec3& e,
-                    const Vec3& omega, SectionWrench& out) {
+void section_wrench(const RodRhs& p, double s, std::size_t piece, const RodRhs::Local& k,
+                    const Vec3& e, const Vec3& omega, SectionWrench& out) {
   out.W.head<3>() = k.Kn.cwiseProduct(e);
   out.W.tail<3>() = k.Kw.cwiseProduct(omega - k.ws);
   out.M.setZero();
@@ -220,6 +237,7 @@ void section_wrench(const RodRhs& p, double s, const RodRhs::Local& k, const Vec
   out.u.assign(p.n_act, Vec6::Zero());
   const Vec3 nu = p.nu_star + e;
   for (int i = 0; i < p.n_act; ++i) {
+    if (!p.runs(piece, i)) continue;  // not crossing this side of the section: u_i = 0
     const rod::Routing& routing = p.model.actuators[i].routing;
     const Vec3 r = routing.r(s);
     const Vec3 q = nu + omega.cross(r) + routing.dr(s);
@@ -246,22 +264,24 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   properties(s, rod::Side::kRight, right.Kn, right.Kw, right.ws, right.wf);
   const Vec3 e_l = Y.segment<3>(kNu), om_l = Y.segment<3>(kOmega);
   SectionWrench wl, wr;
-  section_wrench(*this, s, left, e_l, om_l, wl);
+  section_wrench(*this, s, knot - 1, left, e_l, om_l, wl);
   // Start from the strains of the rod's own wrench (exact without loaded strings).
   Vec3 e = wl.W.head<3>().cwiseQuotient(right.Kn);
   Vec3 om = right.ws + wl.W.tail<3>().cwiseQuotient(right.Kw);
   bool loaded = false;
-  for (int i = 0; i < n_act; ++i) loaded = loaded || cT[i] != 0.0;
+  for (int i = 0; i < n_act; ++i) loaded = loaded || (cT[i] != 0.0 && runs(knot, i));
   if (loaded) {
     // Subtract the strings' share at the left strains as the start, then Newton.
     Vec6 rod_part = wl.W;
-    for (int i = 0; i < n_act; ++i) rod_part -= cT[i] * wl.u[i];
+    for (int i = 0; i < n_act; ++i) {
+      if (runs(knot, i)) rod_part -= cT[i] * wl.u[i];  // a string ending here: the rod's now
+    }
     e = rod_part.head<3>().cwiseQuotient(right.Kn);
     om = right.ws + rod_part.tail<3>().cwiseQuotient(right.Kw);
     const double scale = wl.W.cwiseAbs().maxCoeff();
     bool converged = false;
     for (int it = 0; it < 30 && !converged; ++it) {
-      section_wrench(*this, s, right, e, om, wr);
+      section_wrench(*this, s, knot, right, e, om, wr);
       const Vec6 F = wr.W - wl.W;
       const Vec6 dz = wr.M.partialPivLu().solve(F);
       if (!dz.allFinite()) return false;
@@ -276,7 +296,7 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   Y.segment<3>(kNu) = e;
   Y.segment<3>(kOmega) = om;
   if (directions == 0) return Y.head(dim).allFinite();
-  section_wrench(*this, s, right, e, om, wr);
+  section_wrench(*this, s, knot, right, e, om, wr);
   const Eigen::PartialPivLU<Mat6> lu(wr.M);
   for (int j = 0; j < directions; ++j) {
     double* yj = Y.data() + dim * (j + 1);

@@ -59,7 +59,7 @@ struct RodRhs : RodProblem {
   }
 
   /// A body varying along s: the pieces of the IVP (nullptr for a uniform body).
-  const internal::PieceHooks* piece_hooks() const { return uniform ? nullptr : &pieces; }
+  const internal::PieceHooks* piece_hooks() const { return knots.empty() ? nullptr : &pieces; }
   /// The strain jump at knot k (docs/conventions.md "Bodies that vary along s"): the total
   /// wrench across the section, rod plus strings (body frame),
   ///   W(z, s) = ( K_nu(s) e + sum c_i T_i qh_i,  K_omega(s) (omega - omega*(s)) + sum c_i T_i
@@ -86,6 +86,7 @@ struct RodRhs : RodProblem {
   mutable std::vector<ActuatorCache> cache;
   internal::PieceHooks pieces;     // non-uniform bodies: the knots and the jump functions
   mutable double piece_mid = 0.0;  // midpoint of the piece being integrated
+  mutable std::size_t piece = 0;   // index of the piece being integrated (string_runs)
   mutable Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxSensitivityUnknowns> rhs_ws;  // 6 x nx
 };
 

@@ -87,6 +87,8 @@ void TipConditions::equilibrium(const Actuation& act, const Eigen::VectorXd& x,
   Vec3 n_exp = F_tip + weight_length * w;
   Vec3 m_exp = act.tip_moment_W_Nm + (pL - p0).cross(F_tip) + (c - weight_length * p0).cross(w);
   for (int i = 0; i < n_act; ++i) {
+    // A string anchored at both ends inside the body loads it with a self-balanced system.
+    if (!from_base(i)) continue;
     const rod::Routing& ro = model.actuators[i].routing;
     const Vec3 r0 = ro.r(0.0);
     const Vec3 t0 =

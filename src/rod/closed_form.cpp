@@ -12,6 +12,8 @@ ConstantStrains closed_form_strains(const RodModel& model, const std::vector<dou
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
+    // A string anchored inside the body (span_m) has no share of the base wrench.
+    if (model.actuators[i].span_start_m() > 0.0) continue;
     const Eigen::Vector3d r = model.actuators[i].routing.r(0.0);
     sum_T += cT[i];
     sum_Tx += cT[i] * r.x();
@@ -33,11 +35,14 @@ std::vector<double> closed_form_elongations_m(const RodModel& model,
   std::vector<double> delta(model.actuators.size(), 0.0);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     const Eigen::Vector3d ri = model.actuators[i].routing.r(0.0);
+    const double span = model.actuators[i].span_end_m(model.length_m) -
+                        model.actuators[i].span_start_m();  // L without span_m
     for (std::size_t j = 0; j < model.actuators.size(); ++j) {
+      if (model.actuators[j].span_start_m() > 0.0) continue;  // not in the base wrench
       const Eigen::Vector3d rj = model.actuators[j].routing.r(0.0);
       const double C =
           1.0 / K_nu.z() + ri.y() * rj.y() / K_omega.x() + ri.x() * rj.x() / K_omega.y();
-      delta[i] -= model.length_m * C * cT[j];
+      delta[i] -= span * C * cT[j];
     }
   }
   return delta;
@@ -79,7 +84,9 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
       const Actuator& act = model.actuators[i];
       const Eigen::Vector3d r = act.routing.r(0.0);
       const Eigen::Vector3d q = nu + omega.cross(r) + act.routing.dr(0.0);
-      const double delta = L * q.norm() - act.rest_length_m;
+      // The base section's strains over the string's span (L without span_m).
+      const double span = act.span_end_m(L) - act.span_start_m();
+      const double delta = span * q.norm() - act.rest_length_m;
       const tca::ContactResidual c =
           tca::contact_residual(*act.drive.tca, Tk[k], delta, segments[i]);
       gk[k] = c.phi_N;
@@ -87,12 +94,16 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
         const Eigen::Vector3d qh = q.normalized();
         for (int l = 0; l < n; ++l) {
           const Actuator& al = model.actuators[tca_actuators[l]];
+          if (al.span_start_m() > 0.0) {  // not in the base wrench (closed_form_strains)
+            (*Gk)(k, l) = k == l ? c.dphi_dF : 0.0;
+            continue;
+          }
           const Eigen::Vector3d rl = al.routing.r(0.0);
           const Eigen::Vector3d dnu(0.0, 0.0, -al.count / K_nu.z());
           const Eigen::Vector3d domega(-al.count * rl.y() / K_omega.x(),
                                        al.count * rl.x() / K_omega.y(), 0.0);
           (*Gk)(k, l) =
-              (k == l ? c.dphi_dF : 0.0) + c.dphi_ddelta_N_m * L * qh.dot(dnu + domega.cross(r));
+              (k == l ? c.dphi_dF : 0.0) + c.dphi_ddelta_N_m * span * qh.dot(dnu + domega.cross(r));
         }
       }
     }

@@ -126,9 +126,19 @@ struct Actuator {
   /// scenario's `pre_elongation_m`, 0 when absent: the coiled length is the path length).
   double pre_elongation_m = 0.0;
   /// Rest length of one string [m], what the solvers subtract from the current path length
-  /// to get the elongation: the reference path length int_0^L |e3 + omega* x r + r'| ds
-  /// (rod/reference_path.hpp), less pre_elongation_m for a TCA drive.
+  /// to get the elongation: the reference path length int over the span of
+  /// |e3 + omega* x r + r'| ds (rod/reference_path.hpp), less pre_elongation_m for a TCA drive.
   double rest_length_m = 0.0;
+  /// Where the string is anchored to the body, [s_start, s_end] (docs/scenario-format.md
+  /// "String extent"): absent = [0, L]. Outside its span the string carries nothing; an
+  /// anchor inside (0, L) applies the string's end force there (rod/routing.cpp).
+  std::optional<std::array<double, 2>> span_m;
+  double span_start_m() const { return span_m ? (*span_m)[0] : 0.0; }
+  double span_end_m(double body_length_m) const { return span_m ? (*span_m)[1] : body_length_m; }
+  /// True if the string ends inside the body (a span other than [0, L]).
+  bool anchored_inside(double body_length_m) const {
+    return span_start_m() > 0.0 || span_end_m(body_length_m) < body_length_m;
+  }
 };
 
 /// Tip held at a world point: fully (pinned), or only along a contact normal.
@@ -191,6 +201,14 @@ struct RodModel {
   std::vector<double> breakpoints() const;
   /// Whether any property jumps at s (left and right limits differ).
   bool jumps_at(double s) const;
+  /// Every string anchor strictly inside (0, L) (rod/routing.cpp), sorted, without repeats:
+  /// the points where a string's share of the section wrench starts or stops.
+  std::vector<double> anchor_points() const;
+  /// breakpoints() and anchor_points() together, sorted, without repeats: where the FE mesh
+  /// puts a node and the shooting integrator a piece boundary.
+  std::vector<double> interior_knots() const;
+  /// True if any string is anchored inside the body.
+  bool has_inner_anchors() const;
 };
 
 /// A copy of `model` with every TCA rebuilt on `material` (measurable parameters kept; the

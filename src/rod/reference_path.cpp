@@ -84,7 +84,14 @@ double integrate(const std::function<double(double)>& f, double a, double b) {
 
 ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
                              double length_m) {
+  return reference_path(routing, omega_B_1_m, 0.0, length_m);
+}
+
+ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
+                             double s0_m, double s1_m) {
+  const double length_m = s1_m - s0_m;
   ReferencePath out;
+  out.min_axial_s_m = s0_m;
   const Eigen::Vector3d& w = omega_B_1_m;
   if (routing.type == Routing::Type::kStraight) {
     // r' = 0: q* = e3 + omega* x r is constant along s.
@@ -104,8 +111,8 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
   const auto axial = [&](double t) { return 1.0 + R * rho * std::sin(t - theta); };
   const auto speed = [&](double t) { return std::hypot(c, axial(t)); };
 
-  const double t0 = routing.phase_rad;
-  const double t1 = routing.phase_rad + 2.0 * units::kPi * k * length_m;
+  const double t0 = routing.phase_rad + 2.0 * units::kPi * k * s0_m;
+  const double t1 = routing.phase_rad + 2.0 * units::kPi * k * s1_m;
   const double lo = std::min(t0, t1), hi = std::max(t0, t1);
   // Minimum of sin(t - theta) on [lo, hi]: -1 where t - theta = -pi/2 + 2 pi n lies inside,
   // else at an end.
@@ -114,7 +121,7 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
       2.0 * units::kPi * std::ceil((lo - theta + 0.5 * units::kPi) / (2.0 * units::kPi));
   const double t_min = first_min <= hi ? first_min : (axial(lo) <= axial(hi) ? lo : hi);
   out.min_axial = axial(t_min);
-  out.min_axial_s_m = k != 0.0 ? (t_min - t0) / (2.0 * units::kPi * k) : 0.0;
+  out.min_axial_s_m = s0_m + (k != 0.0 ? (t_min - t0) / (2.0 * units::kPi * k) : 0.0);
   if (rho * R == 0.0 || k == 0.0) {
     // |q*| is constant along s (no bending precurvature, or a helix without turns).
     out.length_m = length_m * speed(t0);
@@ -130,13 +137,20 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
 }
 
 ReferencePath reference_path(const Routing& routing, const RodModel& model) {
+  return reference_path(routing, model, 0.0, model.length_m);
+}
+
+ReferencePath reference_path(const Routing& routing, const RodModel& model, double s0_m,
+                             double s1_m) {
   const auto& prof = model.reference_curvature_profile;
   if (prof[0].is_constant() && prof[1].is_constant() && prof[2].is_constant()) {
-    return reference_path(routing, model.reference_curvature_B_1_m, model.length_m);
+    return reference_path(routing, model.reference_curvature_B_1_m, s0_m, s1_m);
   }
-  std::vector<double> knots{0.0, model.length_m};
+  std::vector<double> knots{s0_m, s1_m};
   for (const Profile& p : prof) {
-    for (double s : p.breakpoints()) knots.push_back(s);
+    for (double s : p.breakpoints()) {
+      if (s > s0_m && s < s1_m) knots.push_back(s);
+    }
   }
   std::sort(knots.begin(), knots.end());
   knots.erase(std::unique(knots.begin(), knots.end()), knots.end());

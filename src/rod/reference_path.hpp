@@ -28,6 +28,9 @@ struct ReferencePath {
 /// Gauss-Legendre quadrature refined until it changes by round-off only.
 ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
                              double length_m);
+/// The same over the span [s0, s1] (a string anchored inside the body): int_s0^s1 |q*| ds.
+ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
+                             double s0_m, double s1_m);
 
 /// The reference path of `routing` on `model`'s body, whose omega* may vary along s
 /// (docs/scenario-format.md "Profiles along the body"): the constant-curvature function above
@@ -36,5 +39,8 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
 /// the piece ends (exact for a straight string: it is linear in s there) and, for a helix, at
 /// 256 points per piece.
 ReferencePath reference_path(const Routing& routing, const RodModel& model);
+/// The same over the span [s0, s1] of an anchored string.
+ReferencePath reference_path(const Routing& routing, const RodModel& model, double s0_m,
+                             double s1_m);
 
 }  // namespace tcasim::rod

@@ -196,12 +196,26 @@ Drive parse_drive(const json& j, const std::string& path, const RodModel& model)
   return d;
 }
 
+/// `span_m: [s_start, s_end]` (docs/scenario-format.md "String extent"): two numbers with
+/// 0 <= s_start < s_end <= L.
+std::array<double, 2> parse_span(const Obj& o, double length_m) {
+  const Eigen::Vector2d v = o.vector2("span_m");
+  const std::string shown = show(o.required("span_m"));
+  require(
+      v[0] >= 0.0 && v[1] <= length_m, o.key("span_m"), shown,
+      fmt::format("must lie inside the body [0, {}] m (body.length_m)", format_value(length_m)));
+  require(v[1] > v[0], o.key("span_m"), shown,
+          "must be increasing: s_start < s_end (the string's anchors, base side first)");
+  return {v[0], v[1]};
+}
+
 /// The rest length of one string of `a` (docs/scenario-format.md, "Rest length and
 /// regularity"): the reference path length, less the TCA's pre-elongation for a TCA drive.
 /// Refuses a reference path that folds, a coiled length that does not match the path
 /// without a pre_elongation_m, and a pre-elongation the TCA cannot have.
 double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
-  const ReferencePath ref = reference_path(a.routing, model);
+  const ReferencePath ref =
+      reference_path(a.routing, model, a.span_start_m(), a.span_end_m(model.length_m));
   const bool straight = a.routing.type == Routing::Type::kStraight;
   const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
   require(
@@ -254,7 +268,8 @@ double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
 }  // namespace
 
 Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model) {
-  const Obj o(j, path, {"name", "comment", "routing", "count", "drive", "pre_elongation_m"});
+  const Obj o(j, path,
+              {"name", "comment", "routing", "count", "drive", "pre_elongation_m", "span_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
   a.routing =
@@ -273,6 +288,7 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
     }
     a.count = static_cast<int>(n);
   }
+  if (o.has("span_m")) a.span_m = parse_span(o, model.length_m);
   a.drive = parse_drive(o.required("drive"), o.key("drive"), model);
   if (a.drive.type == Drive::Type::kTca && o.has("pre_elongation_m")) {
     a.pre_elongation_m = o.number("pre_elongation_m");

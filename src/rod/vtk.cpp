@@ -54,12 +54,19 @@ std::vector<ShapeCurve> shape_curves(const RodModel& model, const Result& result
   curves.push_back({"centerline", -1, result.centerline_s_m, result.centerline_p_W_m});
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     const Actuator& a = model.actuators[i];
-    ShapeCurve c{a.name, static_cast<int>(i), result.centerline_s_m, {}};
+    ShapeCurve c{a.name, static_cast<int>(i), {}, {}};
     c.p_W_m.reserve(n);
+    // A string anchored inside the body is drawn over its span only (both solvers sample
+    // the anchors: they are knots).
+    const double lo = a.span_start_m(), hi = a.span_end_m(model.length_m);
     for (std::size_t k = 0; k < n; ++k) {
+      const double s = result.centerline_s_m[k];
+      // (a round-off margin: a sample at an anchor may be a sum like s0 + h)
+      const double tol = 1e-12 * model.length_m;
+      if (a.span_m && (s < lo - tol || s > hi + tol)) continue;
       // String path in the world frame: q_i = p + R r_i(s) (r_i in the body frame).
-      c.p_W_m.push_back(result.centerline_p_W_m[k] +
-                        result.centerline_R_WB[k] * a.routing.r(result.centerline_s_m[k]));
+      c.s_m.push_back(s);
+      c.p_W_m.push_back(result.centerline_p_W_m[k] + result.centerline_R_WB[k] * a.routing.r(s));
     }
     curves.push_back(std::move(c));
   }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -168,6 +169,21 @@ TEST(Vtp, CenterlinePointsReadBackBitExactAndActuatorOffsetsEqualRTimesR) {
   // The helix path's offset has the routing's radius; the straight one the offset's norm.
   EXPECT_NEAR((point(2, 3) - point(0, 3)).norm(), 0.002, kOffsetAbs_m);
   EXPECT_NEAR((point(1, 3) - point(0, 3)).norm(), std::hypot(0.003, 0.001), kOffsetAbs_m);
+}
+
+TEST(ShapeCurves, AStringAnchoredInsideTheBodyIsDrawnOverItsSpanOnly) {
+  RodModel model = sample_model();
+  model.actuators[0].span_m = std::array<double, 2>{0.01, 0.03};
+  const Result result = sample_result(9);  // s = 0, 5, 10, ..., 40 mm
+  const std::vector<ShapeCurve> curves = shape_curves(model, result);
+  ASSERT_EQ(curves.size(), 3u);
+  EXPECT_EQ(curves[1].s_m, std::vector<double>(result.centerline_s_m.begin() + 2,
+                                               result.centerline_s_m.begin() + 7));
+  ASSERT_EQ(curves[1].p_W_m.size(), 5u);
+  EXPECT_EQ(curves[1].p_W_m[0],
+            result.centerline_p_W_m[2] +
+                result.centerline_R_WB[2] * model.actuators[0].routing.r(result.centerline_s_m[2]));
+  EXPECT_EQ(curves[2].s_m.size(), 9u);  // no span: base to tip
 }
 
 TEST(Vtp, EmptyCenterlineGivesAValidEmptyPiece) {
