@@ -10,14 +10,7 @@
 
 namespace tcasim::cosserat {
 
-namespace {
-using internal::hat;
-using internal::Mat3;
-using internal::Mat6;
-using internal::Vec3;
-using internal::Vec6;
-using namespace dynamics;
-}  // namespace
+using namespace dynamics_names;
 
 const char* to_string(DynamicsSummary::Status s) {
   switch (s) {

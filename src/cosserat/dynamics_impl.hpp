@@ -134,4 +134,14 @@ struct RodDynamics::Impl {
   std::vector<Eigen::Triplet<double>> triplets_;
 };
 
+/// The names every dynamics source file uses (one `using namespace dynamics_names;` each).
+namespace dynamics_names {
+using internal::hat;
+using internal::Mat3;
+using internal::Mat6;
+using internal::Vec3;
+using internal::Vec6;
+using namespace dynamics;
+}  // namespace dynamics_names
+
 }  // namespace tcasim::cosserat

@@ -8,14 +8,7 @@
 
 namespace tcasim::cosserat {
 
-namespace {
-using internal::hat;
-using internal::Mat3;
-using internal::Mat6;
-using internal::Vec3;
-using internal::Vec6;
-using namespace dynamics;
-}  // namespace
+using namespace dynamics_names;
 
 DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   DynamicsSummary sum;

@@ -3,14 +3,7 @@
 
 namespace tcasim::cosserat {
 
-namespace {
-using internal::hat;
-using internal::Mat3;
-using internal::Mat6;
-using internal::Vec3;
-using internal::Vec6;
-using namespace dynamics;
-}  // namespace
+using namespace dynamics_names;
 
 double RodDynamics::kinetic_energy_J() const {
   const Impl& d = *impl_;

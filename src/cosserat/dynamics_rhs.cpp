@@ -6,14 +6,7 @@
 
 namespace tcasim::cosserat {
 
-namespace {
-using internal::hat;
-using internal::Mat3;
-using internal::Mat6;
-using internal::Vec3;
-using internal::Vec6;
-using namespace dynamics;
-}  // namespace
+using namespace dynamics_names;
 
 bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
                             Eigen::MatrixXd* A) {

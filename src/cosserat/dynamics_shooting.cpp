@@ -7,14 +7,7 @@
 
 namespace tcasim::cosserat {
 
-namespace {
-using internal::hat;
-using internal::Mat3;
-using internal::Mat6;
-using internal::Vec3;
-using internal::Vec6;
-using namespace dynamics;
-}  // namespace
+using namespace dynamics_names;
 
 bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi) {
   Eigen::VectorXd Y(D), kj(D), acc(D);
