@@ -16,11 +16,11 @@
 #include "beam_fe/dynamics.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "common/units.hpp"
 #include "cosserat/dynamics.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "rod/trajectory.hpp"
 #include "rod/vtk.hpp"
 
 namespace tcasim::app {
@@ -244,32 +244,11 @@ void add_simulate_command(CLI::App& app) {
 
     Output out(f.out);
     std::ostream& os = out.stream();
-    os << "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J";
-    // Temperature columns: one per actuator, or one per segment of a segmented TCA
-    // (<name>_<k>_temperature_degC, k = 0, 1, ... base to tip as in `segments`).
-    for (const auto& a : model.actuators) {
-      os << ',' << a.name << "_tension_N," << a.name << "_elongation_m";
-      if (a.drive.type == rod::Drive::Type::kTca && a.drive.segmented) {
-        for (std::size_t k = 0; k < a.drive.segments.size(); ++k) {
-          os << ',' << a.name << '_' << k << "_temperature_degC";
-        }
-      } else {
-        os << ',' << a.name << "_temperature_degC";
-      }
-    }
-    os << '\n';
+    rod::write_trajectory_header(os, model);
     auto write_row = [&] {
-      const Eigen::Vector3d p = dyn.tip_position_W_m();
-      os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", dyn.time_s(), p.x(), p.y(), p.z(),
-                        dyn.kinetic_energy_J());
-      const std::vector<double> t = dyn.tensions_N(), e = dyn.elongations_m();
-      const std::vector<std::vector<double>> T = dyn.segment_temperatures_K();
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        os << fmt::format(",{:.12e},{:.12e}", t[i], e[i]);
-        if (T[i].empty()) os << ",nan";  // tension drive: no temperature
-        for (const double T_K : T[i]) os << fmt::format(",{:.9f}", units::K_to_degC(T_K));
-      }
-      os << '\n';
+      rod::write_trajectory_row(os, dyn.time_s(), dyn.tip_position_W_m(), dyn.kinetic_energy_J(),
+                                dyn.tensions_N(), dyn.elongations_m(),
+                                dyn.segment_temperatures_K());
     };
     std::string pvd;
     int frame = 0;

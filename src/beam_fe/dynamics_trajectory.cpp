@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "beam_fe/dynamics.hpp"
+#include "rod/trajectory.hpp"
 
 namespace tcasim::beam_fe {
 
@@ -12,21 +13,10 @@ TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model
                                    std::ostream& os,
                                    const std::function<void(const BeamDynamics&)>& after_row) {
   TrajectorySummary out;
-  os << "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J";
-  for (const auto& a : model.actuators) {
-    os << ',' << a.name << "_tension_N," << a.name << "_elongation_m," << a.name
-       << "_temperature_degC";
-  }
-  os << '\n';
+  rod::write_trajectory_header(os, model);
   auto write_row = [&] {
-    const Eigen::Vector3d p = dyn.tip_position_W_m();
-    os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", dyn.time_s(), p.x(), p.y(), p.z(),
-                      dyn.kinetic_energy_J());
-    const std::vector<double> t = dyn.tensions_N(), e = dyn.elongations_m();
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      os << fmt::format(",{:.12e},{:.12e},nan", t[i], e[i]);  // tension drives: no temperature
-    }
-    os << '\n';
+    rod::write_trajectory_row(os, dyn.time_s(), dyn.tip_position_W_m(), dyn.kinetic_energy_J(),
+                              dyn.tensions_N(), dyn.elongations_m(), {});  // tension drives only
     if (after_row) after_row(dyn);
   };
   const BeamDynamicsSummary init = dyn.initialize(loads_at(0.0));
