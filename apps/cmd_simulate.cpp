@@ -207,19 +207,8 @@ void add_simulate_command(CLI::App& app) {
       fo.dt_s = f.dt_s;
       fo.rho_inf = f.rho_inf;
       fo.max_iterations = f.max_iterations;
-      // The FE dynamics takes one viscosity for the whole body: a profile along s is refused
-      // unless --viscosity-Pa-s replaces it.
-      if (viscosity_flag->count() > 0) {
-        fo.viscosity_Pa_s = f.viscosity;
-      } else {
-        if (!model.material.viscosity_profile.is_constant()) {
-          throw DomainError(
-              "tcasim simulate --method fe: body.material.viscosity_Pa_s varies along s; the FE "
-              "dynamics takes a constant viscosity so far (use --method cosserat, or "
-              "--viscosity-Pa-s)");
-        }
-        fo.viscosity_Pa_s = model.material.viscosity_Pa_s;
-      }
+      // The flag overrides the scenario's viscosity (a constant or a profile along s).
+      if (viscosity_flag->count() > 0) fo.viscosity_Pa_s = f.viscosity;
       fo.tip_mass_kg = tip_mass_flag->count() > 0 ? f.tip_mass : model.tip_mass_kg;
       run_fe(model, fo, loads_at, static_cast<long long>(n_steps_real), f.output_every, f.out,
              f.vtk_dir);

@@ -49,6 +49,10 @@ struct Options {
   int max_load_steps = 200;        ///< load-step attempts (accepted + rejected)
   double initial_load_step = 1.0;  ///< first load-factor increment in (0, 1]
   double min_load_step = 1e-6;     ///< give up when a halved increment falls below this
+  /// More points strictly inside (0, L) where the mesh puts a node, as at a breakpoint of the
+  /// body's profiles (the FE dynamics passes the breakpoints of a viscosity profile). Empty
+  /// (the default): the mesh of the body's own breakpoints and anchors.
+  std::vector<double> extra_knots_m;
 };
 
 /// Configuration of the mesh: nodal positions, triads and string tensions.
@@ -128,7 +132,8 @@ class Discretization {
   /// Elements of the mesh: Options::elements for a uniform body; for a body that varies
   /// along s (docs/scenario-format.md "Profiles along the body") the mesh has a node at every
   /// breakpoint and each piece between breakpoints max(1, round(elements x piece / L)) equal
-  /// elements, so the count may differ from Options::elements.
+  /// elements, so the count may differ from Options::elements. Options::extra_knots_m are
+  /// breakpoints too.
   int element_count() const { return elements_; }
   /// Reference arc length of element e's first node and its length [m].
   double element_start_m(int e) const { return element_s0_m_[static_cast<std::size_t>(e)]; }

@@ -40,7 +40,15 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");
   h_m_ = model.length_m / elements_;
-  if (model.uniform_body() && !model.has_inner_anchors()) {
+  std::vector<double> knots = model.interior_knots();
+  for (const double s : options.extra_knots_m) {
+    require(s > 0.0 && s < model.length_m, "extra_knots_m", s,
+            "must lie strictly inside (0, body.length_m)");
+    knots.push_back(s);
+  }
+  std::sort(knots.begin(), knots.end());
+  knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+  if (model.uniform_body() && knots.empty()) {
     element_h_m_.assign(static_cast<std::size_t>(elements_), h_m_);
     for (int e = 0; e < elements_; ++e) {
       element_s0_m_.push_back(model.length_m * (e * order_) / (elements_ * order_));
@@ -48,7 +56,6 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   } else {
     // A node at every breakpoint and string anchor; equal elements on each piece, in
     // proportion to its length.
-    std::vector<double> knots = model.interior_knots();
     knots.insert(knots.begin(), 0.0);
     knots.push_back(model.length_m);
     for (std::size_t k = 0; k + 1 < knots.size(); ++k) {

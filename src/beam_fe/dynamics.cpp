@@ -13,6 +13,7 @@
 #include "beam_fe/dynamics_internal.hpp"
 #include "common/error.hpp"
 #include "common/so3.hpp"
+#include "rod/electric_thermal.hpp"
 
 namespace tcasim::beam_fe {
 namespace {
@@ -55,8 +56,11 @@ AlphaParameters alpha_parameters(double rho) {
 struct BeamDynamics::Impl {
   Impl(const rod::RodModel& m, const DynamicsOptions& o);
 
-  /// Loads at which the residual is evaluated (applied; tensions into `trial`).
+  /// Loads at which the residual is evaluated (applied; tension drives into `tensions`, TCA
+  /// segments with the thermal states into the model's drives).
   void set_loads(const rod::Loads& loads);
+  /// The tension drives' tensions into `s` (the TCA tensions are unknowns).
+  void set_drive_tensions(State& s) const;
   /// Trial state and rates at increment x; the residual (unscaled) and, with J, dr/dx.
   VectorXd evaluate(const VectorXd& x, SpMat* J);
   /// Static residual (external loads subtracted) at `st`, tangent in material increments.
@@ -65,14 +69,23 @@ struct BeamDynamics::Impl {
   void subtract_external(const State& st, VectorXd& r, SpMat* K) const;
   bool within_tolerance(const VectorXd& r, double* scaled) const;
   BeamDynamicsSummary newton_static();
+  /// The drives' segment temperatures of the converged state into temperatures_conv.
+  void keep_temperatures();
 
   const rod::RodModel& model;
   DynamicsOptions opt;
   AlphaParameters ap;
-  rod::RodModel model_static, model_dyn;  // tip mass of the options; model_dyn: K + c B
+  // The model the discretization reads: the options' tip mass, no gravity or tip wrench (this
+  // solver applies the loads of each time itself, so its residual is taken at load factor 1,
+  // where the TCA rows see the temperatures of the drives' segments, set by set_loads).
+  rod::RodModel model_static;
   Options fe;
-  std::unique_ptr<Discretization> disc_static, disc_dyn;
+  std::unique_ptr<Discretization> disc_static;
   int nodes = 0, free_dofs = 0, n_act = 0;
+  int n_x = 0;                  // unknowns: free_dofs, then one tension per TCA
+  std::vector<int> tca_actuator;  // actuator of each TCA unknown
+  rod::ElectricThermalStates thermal;
+  std::vector<std::vector<double>> temperatures_conv;  // per actuator, of the last converged step
   double h = 0.0, t = 0.0, L = 0.0, F_c = 1.0;
   // Coefficients of the affine maps x -> vdot, v (d vdot/dx, d v/dx) and strain rate c_e.
   double c_a = 0.0, c_v = 0.0, c_e = 0.0;
@@ -96,27 +109,20 @@ struct BeamDynamics::Impl {
 };
 
 BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
-    : model(m), opt(o), model_static(m), model_dyn(m) {
+    : model(m), opt(o), model_static(m) {
   require(std::isfinite(o.dt_s) && o.dt_s > 0.0, "dynamics.dt_s", o.dt_s, "must be > 0");
   require(o.rho_inf >= 0.0 && o.rho_inf <= 1.0, "dynamics.rho_inf", o.rho_inf, "must be in [0, 1]");
   require(std::isfinite(o.tolerance) && o.tolerance > 0.0, "dynamics.tolerance", o.tolerance,
           "must be > 0");
   require(o.max_iterations >= 1, "dynamics.max_iterations", o.max_iterations, "must be >= 1");
-  require(std::isfinite(o.viscosity_Pa_s) && o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
-          o.viscosity_Pa_s, "must be >= 0");
   require(std::isfinite(o.tip_mass_kg) && o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
           o.tip_mass_kg, "must be >= 0");
   if (m.tip_constraint) {
     throw DomainError("FE dynamics: a tip_constraint is not supported in dynamics yet");
   }
-  for (const auto& act : m.actuators) {
-    if (act.drive.type != rod::Drive::Type::kTension) {
-      throw DomainError("FE dynamics: actuator '" + act.name +
-                        "' has a TCA drive; dynamics supports tension drives only so far");
-    }
-  }
-  if (o.viscosity_Pa_s > 0.0 && !m.uniform_body()) {
-    throw DomainError("FE dynamics: Kelvin-Voigt damping needs a uniform body so far");
+  if (o.viscosity_Pa_s) {
+    require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0,
+            "dynamics.viscosity_Pa_s", *o.viscosity_Pa_s, "must be >= 0");
   }
   ap = alpha_parameters(o.rho_inf);
   h = o.dt_s;
@@ -125,22 +131,27 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
   c_v = ap.gamma / ap.beta;
   c_e = ap.gamma / (ap.beta * h);
   model_static.tip_mass_kg = o.tip_mass_kg;
-  model_dyn.tip_mass_kg = o.tip_mass_kg;
-  if (o.viscosity_Pa_s > 0.0) {
-    // K + c_e B: E -> E + c_e eta, G -> G + c_e eta_s with eta_s = eta / (2 (1 + poisson)),
-    // exactly the damping matrices B_se, B_bt of docs/conventions.md.
-    const double eta = o.viscosity_Pa_s;
-    model_dyn.material.youngs_modulus_Pa += c_e * eta;
-    model_dyn.material.shear_modulus_Pa += c_e * eta / (2.0 * (1.0 + m.material.poisson_ratio));
-  }
+  model_static.gravity_W_m_s2.setZero();
+  model_static.tip_force_W_N.setZero();
+  model_static.tip_moment_W_Nm.setZero();
   fe.elements = o.elements;
   fe.order = o.order;
   fe.integration = o.integration;
+  // A viscosity profile's breakpoints are mesh nodes, as the body's own.
+  const rod::Profile& eta_profile = m.material.viscosity_profile;
+  const bool eta_varies = !o.viscosity_Pa_s && !eta_profile.is_constant();
+  if (eta_varies) {
+    for (const double s : eta_profile.breakpoints())
+      if (s > 0.0 && s < m.length_m) fe.extra_knots_m.push_back(s);
+  }
   disc_static = std::make_unique<Discretization>(model_static, fe);  // validates elements, order
-  disc_dyn = std::make_unique<Discretization>(model_dyn, fe);
   nodes = disc_static->node_count();
   free_dofs = 6 * (nodes - 1);
   n_act = static_cast<int>(m.actuators.size());
+  for (int i = 0; i < n_act; ++i) {
+    if (m.actuators[i].drive.type == rod::Drive::Type::kTca) tca_actuator.push_back(i);
+  }
+  n_x = free_dofs + static_cast<int>(tca_actuator.size());
   floor = disc_static->round_off_floor();
 
   // Consistent mass (3-point Gauss: exact for uniform quadratic elements) and nodal inertia.
@@ -173,8 +184,11 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
       }
     }
   }
-  if (o.viscosity_Pa_s > 0.0) {
-    kv = std::make_unique<damping::StrainRateHistory>(*disc_dyn, m, o.viscosity_Pa_s, ap, h);
+  const double eta_max = o.viscosity_Pa_s ? *o.viscosity_Pa_s
+                         : eta_varies      ? eta_profile.max_value()
+                                           : m.material.viscosity_Pa_s;
+  if (eta_max > 0.0) {
+    kv = std::make_unique<damping::StrainRateHistory>(*disc_static, m, o.viscosity_Pa_s, ap, h);
   }
   v = vd = a = VectorXd::Zero(free_dofs);
   tensions.assign(n_act, 0.0);
@@ -186,7 +200,20 @@ void BeamDynamics::Impl::set_loads(const rod::Loads& loads_in) {
   g_W = l.gravity_W_m_s2;
   F_tip = l.tip_force_W_N;
   M_tip = l.tip_moment_W_Nm;
-  for (int i = 0; i < n_act; ++i) tensions[i] = l.actuators[i].tension_N;
+  std::vector<std::vector<tca::Segment>> segments(n_act);
+  for (int i = 0; i < n_act; ++i) {
+    tensions[i] = l.actuators[i].tension_N;
+    segments[i] = l.actuators[i].segments;
+  }
+  thermal.apply(segments);
+  for (const int i : tca_actuator) model_static.actuators[i].drive.segments = segments[i];
+}
+
+void BeamDynamics::Impl::set_drive_tensions(State& s) const {
+  s.tensions_N.resize(n_act, 0.0);
+  for (int i = 0; i < n_act; ++i) {
+    if (model.actuators[i].drive.type == rod::Drive::Type::kTension) s.tensions_N[i] = tensions[i];
+  }
 }
 
 void BeamDynamics::Impl::subtract_external(const State& s, VectorXd& r, SpMat* Kt) const {
@@ -204,7 +231,7 @@ void BeamDynamics::Impl::subtract_external(const State& s, VectorXd& r, SpMat* K
 }
 
 VectorXd BeamDynamics::Impl::static_residual(const State& s, SpMat* Kt) const {
-  VectorXd r = disc_static->residual(s, 0.0, Kt);
+  VectorXd r = disc_static->residual(s, 1.0, Kt);
   subtract_external(s, r, Kt);
   return r;
 }
@@ -218,6 +245,10 @@ bool BeamDynamics::Impl::within_tolerance(const VectorXd& r, double* scaled) con
     worst = std::max(worst, std::abs(r[i]) / unit);
     ok = ok && std::abs(r[i]) <= opt.tolerance * unit + (moment ? floor.moment : floor.force);
   }
+  for (int i = free_dofs; i < n_x; ++i) {  // TCA rows [N]
+    worst = std::max(worst, std::abs(r[i]) / F_c);
+    ok = ok && std::abs(r[i]) <= opt.tolerance * F_c + floor.force;
+  }
   if (scaled) *scaled = r.allFinite() ? worst : std::numeric_limits<double>::infinity();
   return ok;
 }
@@ -227,7 +258,7 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
   //   q1 = q exp(h x), x = v + h (1/2 - beta) a + h beta a1,
   //   v1 = v + h (1 - gamma) a + h gamma a1,
   //   (1 - alpha_m) a1 + alpha_m a = (1 - alpha_f) vd1 + alpha_f vd.
-  a1 = (x - v - h * (0.5 - ap.beta) * a) / (ap.beta * h);
+  a1 = (x.head(free_dofs) - v - h * (0.5 - ap.beta) * a) / (ap.beta * h);
   v1 = v + h * (1.0 - ap.gamma) * a + h * ap.gamma * a1;
   vd1 = ((1.0 - ap.alpha_m) * a1 + ap.alpha_m * a - ap.alpha_f * vd) / (1.0 - ap.alpha_f);
   trial = st;
@@ -236,9 +267,12 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
     trial.q_WB[k] =
         (st.q_WB[k] * so3::exp_quaternion(h * x.segment<3>(6 * (k - 1) + 3))).normalized();
   }
-  trial.tensions_N = tensions;
-  VectorXd r = disc_dyn->residual(trial, 0.0, Jout ? &K : nullptr);
-  if (kv) kv->add_history_forces(trial, r, Jout ? &K : nullptr);
+  set_drive_tensions(trial);
+  for (std::size_t j = 0; j < tca_actuator.size(); ++j) {
+    trial.tensions_N[tca_actuator[j]] = x[free_dofs + static_cast<int>(j)];
+  }
+  VectorXd r = disc_static->residual(trial, 1.0, Jout ? &K : nullptr);
+  if (kv) kv->add_forces(trial, r, Jout ? &K : nullptr);
   subtract_external(trial, r, Jout ? &K : nullptr);
   // Inertia: consistent translational mass (world frame), nodal rotational inertia with the
   // gyroscopic term W x J W (body frame), the tip mass at the tip node.
@@ -263,9 +297,10 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
         node_J[k].cwiseProduct(vd1.segment<3>(6 * (k - 1) + 3)) + W.cross(JW);
   }
   if (!Jout) return r;
-  // dr/dx = K T h + c_a M + c_v C_gyro, T = diag(I, Jr(h x_theta)) per node, in place in K's
-  // pattern: T mixes only the three rotation columns of a node, which share their rows, and the
-  // inertia blocks lie inside the element blocks.
+  // dr/dx = K T h + c_a M + c_v C_gyro, T = diag(I, Jr(h x_theta)) per node (the TCA columns
+  // are the tensions themselves: T = I there), in place in K's pattern: T mixes only the three
+  // rotation columns of a node, which share their rows, and the inertia blocks lie inside the
+  // element blocks.
   double* val = K.valuePtr();
   const int* outer = K.outerIndexPtr();
   for (int k = 1; k < nodes; ++k) {
@@ -316,12 +351,21 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
   return r;
 }
 
+void BeamDynamics::Impl::keep_temperatures() {
+  temperatures_conv.assign(n_act, {});
+  for (const int i : tca_actuator) {
+    for (const tca::Segment& sg : model_static.actuators[i].drive.segments) {
+      temperatures_conv[i].push_back(sg.temperature_K);
+    }
+  }
+}
+
 BeamDynamicsSummary BeamDynamics::Impl::newton_static() {
   BeamDynamicsSummary sum;
   SpMat Ks;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu;
   for (int it = 0;; ++it) {
-    st.tensions_N = tensions;
+    set_drive_tensions(st);
     const VectorXd r = static_residual(st, &Ks);
     if (within_tolerance(r, &sum.residual)) {
       sum.status = BeamDynamicsSummary::Status::kConverged;
@@ -357,6 +401,7 @@ BeamDynamics::~BeamDynamics() = default;
 
 BeamDynamicsSummary BeamDynamics::initialize(const rod::Loads& loads) {
   Impl& d = *impl_;
+  d.thermal.reset(d.model, loads);
   d.set_loads(loads);
   d.F_c = rod::characteristic_force_N(d.model_static, loads);
   d.t = 0.0;
@@ -370,17 +415,36 @@ BeamDynamicsSummary BeamDynamics::initialize(const rod::Loads& loads) {
   d.v.setZero();
   d.vd.setZero();
   d.a.setZero();
-  d.x_last = VectorXd::Zero(d.free_dofs);
+  d.x_last = VectorXd::Zero(d.n_x);
+  for (std::size_t j = 0; j < d.tca_actuator.size(); ++j) {
+    d.x_last[d.free_dofs + static_cast<int>(j)] = d.st.tensions_N[d.tca_actuator[j]];
+  }
   if (d.kv) d.kv->reset(d.st);
+  d.keep_temperatures();
   return sum;
 }
 
 BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   Impl& d = *impl_;
-  d.set_loads(loads);
   BeamDynamicsSummary sum;
-  // Predictor: a_{n+1} = a_n.
-  VectorXd x = d.v + d.h * 0.5 * d.a;
+  // Electric drives: the temperatures over [t, t + dt] first (they do not depend on the
+  // mechanics), then the mechanics at the new temperatures.
+  const rod::ElectricThermalStates thermal_n = d.thermal;
+  if (!d.thermal.advance(d.model, d.t, d.h, sum.message)) {
+    sum.status = BeamDynamicsSummary::Status::kNonFinite;
+    return sum;
+  }
+  d.set_loads(loads);
+  // Restores the thermal states of t_n when the mechanical step fails.
+  const auto failed = [&](BeamDynamicsSummary::Status status, std::string message) {
+    d.thermal = thermal_n;
+    sum.status = status;
+    sum.message = std::move(message);
+    return sum;
+  };
+  // Predictor: a_{n+1} = a_n, the TCA tensions of t_n.
+  VectorXd x = d.x_last;
+  x.head(d.free_dofs) = d.v + d.h * 0.5 * d.a;
   // Chord (simplified Newton) iterations with the last factorization, kept across steps; a
   // fresh Jacobian when one contracts the residual by less than kChordContraction, after
   // kMaxChordSteps chord steps, or always without reuse_factorization.
@@ -393,26 +457,22 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     const VectorXd r = d.evaluate(x, fresh ? &d.K : nullptr);
     if (d.within_tolerance(r, &sum.residual)) break;
     if (!r.allFinite()) {
-      sum.status = BeamDynamicsSummary::Status::kNonFinite;
-      sum.message = "the residual is not finite";
-      return sum;
+      return failed(BeamDynamicsSummary::Status::kNonFinite, "the residual is not finite");
     }
     if (!fresh && (sum.residual > kChordContraction * r_prev || chord_steps >= kMaxChordSteps)) {
       fresh = true;  // the same x again, with its Jacobian
       continue;
     }
     if (sum.iterations == d.opt.max_iterations) {
-      sum.status = BeamDynamicsSummary::Status::kMaxIterations;
-      sum.message = fmt::format("no convergence in {} Newton iterations (scaled residual {:.3e})",
-                                d.opt.max_iterations, sum.residual);
-      return sum;
+      return failed(BeamDynamicsSummary::Status::kMaxIterations,
+                    fmt::format("no convergence in {} Newton iterations (scaled residual {:.3e})",
+                                d.opt.max_iterations, sum.residual));
     }
     if (fresh) {
       d.factored = d.lu.factorize(d.K);
       if (!d.factored) {
-        sum.status = BeamDynamicsSummary::Status::kSingular;
-        sum.message = "the iteration matrix could not be factorized";
-        return sum;
+        return failed(BeamDynamicsSummary::Status::kSingular,
+                      "the iteration matrix could not be factorized");
       }
       chord_steps = 0;
     } else {
@@ -420,9 +480,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     }
     VectorXd dx = -r;
     if (!d.lu.solve(dx) || !dx.allFinite()) {
-      sum.status = BeamDynamicsSummary::Status::kNonFinite;
-      sum.message = "the Newton step is not finite";
-      return sum;
+      return failed(BeamDynamicsSummary::Status::kNonFinite, "the Newton step is not finite");
     }
     x += dx;
     ++sum.iterations;
@@ -437,6 +495,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   d.a = d.a1;
   d.x_last = x;
   d.t += d.h;
+  d.keep_temperatures();
   return sum;
 }
 
@@ -444,8 +503,8 @@ VectorXd BeamDynamics::step_residual(const rod::Loads& loads, const VectorXd& x,
   Impl& d = *impl_;
   d.set_loads(loads);
   VectorXd r = d.evaluate(x, Jac);
-  for (int i = 0; i < d.free_dofs; ++i) {
-    const double unit = i % 6 >= 3 ? d.F_c * d.L : d.F_c;
+  for (int i = 0; i < d.n_x; ++i) {
+    const double unit = i < d.free_dofs && i % 6 >= 3 ? d.F_c * d.L : d.F_c;
     r[i] /= unit;
     if (Jac) Jac->row(i) /= unit;
   }
@@ -506,12 +565,16 @@ double BeamDynamics::potential_energy_J() const {
   U -= (d.F_tip + d.opt.tip_mass_kg * d.g_W).dot(d.st.p_W_m.back());
   const std::vector<double> l = d.disc_static->string_lengths(d.st);
   for (int i = 0; i < d.n_act; ++i) {
-    U += m.actuators[i].count * d.tensions[i] * (l[i] - m.actuators[i].rest_length_m);
+    U += m.actuators[i].count * d.st.tensions_N[i] * (l[i] - m.actuators[i].rest_length_m);
   }
   return U;
 }
 
-std::vector<double> BeamDynamics::tensions_N() const { return impl_->tensions; }
+std::vector<double> BeamDynamics::tensions_N() const { return impl_->st.tensions_N; }
+
+std::vector<std::vector<double>> BeamDynamics::segment_temperatures_K() const {
+  return impl_->temperatures_conv;
+}
 
 std::vector<double> BeamDynamics::elongations_m() const {
   const Impl& d = *impl_;

@@ -9,15 +9,21 @@
 /// M the consistent translational mass int rho A N_a N_b ds (plus the tip mass at the tip
 /// node), J_a the rotational inertia of node a by nodal quadrature (int N_a ds rho J, Simpson's
 /// rule for quadratic elements), f_int the static element forces (strings as an internal
-/// potential) with Kelvin-Voigt stresses B_se e_t, B_bt omega_t at every quadrature point.
+/// potential, closed coils and anchors as in statics) with Kelvin-Voigt stresses B_se e_t,
+/// B_bt omega_t at every quadrature point. A TCA-driven string adds its tension T_i as an
+/// unknown with the algebraic row T_i - F_tca(delta_i, temperatures at t_{n+1}) (the static
+/// bordered row, coil contact included); the temperatures come from the loads, an electric
+/// drive's from its thermal states advanced before the mechanics (rod::ElectricThermalStates).
 /// Time step: the Newton unknown is the increment x = log(q_n^-1 q_{n+1}) / dt (a vector), with
 /// q_{n+1} = q_n exp(dt x) and the Newmark and alpha relations giving a_{n+1}, v_{n+1} and
-/// vdot_{n+1} as affine functions of x; the Jacobian is exact (step_residual for tests).
+/// vdot_{n+1} as affine functions of x, followed by the TCA tensions at t_{n+1}; the Jacobian
+/// is exact (step_residual for tests).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,8 +52,10 @@ struct DynamicsOptions {
   /// Reuse the last factorization of the step Jacobian (chord iterations, across steps) while
   /// it contracts the residual by 4 per iteration; false: a fresh Jacobian every iteration.
   bool reuse_factorization = true;
-  /// Kelvin-Voigt viscosity eta [Pa s] (as cosserat::DynamicsOptions::viscosity_Pa_s).
-  double viscosity_Pa_s = 0.0;
+  /// Kelvin-Voigt viscosity eta [Pa s], constant along s. Unset (the default): the model's
+  /// body.material.viscosity_Pa_s, a constant or a profile along s (the mesh then has a node at
+  /// each breakpoint of the profile), as cosserat::DynamicsOptions::viscosity_Pa_s.
+  std::optional<double> viscosity_Pa_s;
   /// Point mass at the tip [kg] (inertia and weight; replaces the model's tip_mass_kg).
   double tip_mass_kg = 0.0;
 };
@@ -79,8 +87,10 @@ struct AlphaParameters {
 AlphaParameters alpha_parameters(double rho_inf);
 
 /// FE dynamics of one model: static initialization at t = 0, then fixed time steps. Holds a
-/// reference to the model (it must outlive the solver). Tension drives only (a TCA drive and a
-/// tip constraint are refused with DomainError, as in cosserat::RodDynamics).
+/// reference to the model (it must outlive the solver). Tension drives and TCA drives (by
+/// temperature from the loads, or electric: thermal states advanced with each step), strings
+/// anchored inside the body; a tip constraint is refused with DomainError (as in
+/// cosserat::RodDynamics).
 class BeamDynamics {
  public:
   BeamDynamics(const rod::RodModel& model, const DynamicsOptions& options);
@@ -99,6 +109,7 @@ class BeamDynamics {
   const State& state() const;  ///< nodal configuration of the last converged step
   const Discretization& discretization() const;
   /// Per free node (6 each): velocities (v_a world, W_a body) of the last converged step.
+  /// (The TCA tensions follow in step_residual's unknowns, not here.)
   const Eigen::VectorXd& velocities() const;
   Eigen::Vector3d tip_position_W_m() const;
   Eigen::Matrix3d tip_rotation_W() const;
@@ -109,11 +120,17 @@ class BeamDynamics {
   /// force (with the tip mass's weight), plus c_i T_i delta_i of the strings (tip moments are
   /// not included: not conservative in 3-D). Its gradient is the static residual.
   double potential_energy_J() const;
+  /// Per actuator: tension of one string [N] (a TCA's: its unknown) and elongation [m].
   std::vector<double> tensions_N() const;
   std::vector<double> elongations_m() const;
+  /// Per actuator, its segments' temperatures of the last converged step [K], base to tip (one
+  /// for a TCA at a uniform temperature; empty for a tension drive): an electric drive's
+  /// thermal states, else the loads' temperatures.
+  std::vector<std::vector<double>> segment_temperatures_K() const;
 
-  /// For tests: the step residual at increment x (6 per free node) from the last converged
-  /// step under `loads`, scaled as the convergence test; with J, its exact Jacobian dr/dx.
+  /// For tests: the step residual at unknowns x (6 per free node, then one tension per TCA)
+  /// from the last converged step under `loads` (electric drives: at the current thermal
+  /// states), scaled as the convergence test; with J, its exact Jacobian dr/dx.
   Eigen::VectorXd step_residual(const rod::Loads& loads, const Eigen::VectorXd& x,
                                 Eigen::SparseMatrix<double>* J = nullptr);
 
@@ -134,8 +151,8 @@ struct TrajectorySummary {
 
 /// Runs `steps` time steps from the static state under loads_at(0) and writes the trajectory
 /// CSV of docs/scenario-format.md "Trajectory file" (the columns of `tcasim simulate`): the
-/// header, the row of t = 0, then every `output_every`-th step and the last one; tension drives
-/// have no temperature (nan). A failed step (or static state) ends the rows with a line
+/// header, the row of t = 0, then every `output_every`-th step and the last one (a TCA's
+/// temperatures per segment; tension drives have none: nan). A failed step (or static state) ends the rows with a line
 /// "# ..." saying why. `after_row` (optional) is called after each written row.
 TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model,
                                    const LoadsAt& loads_at, long long steps, long long output_every,

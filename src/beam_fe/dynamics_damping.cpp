@@ -1,13 +1,13 @@
 // Kelvin-Voigt damping of the FE dynamics: the strain-rate history per quadrature point and the
-// nodal forces of a fixed stress (beam_fe/dynamics_damping.hpp).
+// nodal forces of the viscous stress (beam_fe/dynamics_damping.hpp).
 //
-// The forces of a fixed stress sigma follow the chain of the element kernel (element.cpp):
-//   increments theta -> u = (y_a, psi_a) -> g = (y', psi, psi') -> eps = (exp(psi)^T y',
-//   Jr(psi) psi'), r = B^T G^T F^T sigma; the tangent is that of the element with the
-// constitutive tangent C = 0: B^T G^T S G B (S = sum_k sigma_k d2 eps_k / dg2), plus the second
-// derivatives of u(theta) contracted with the gradient, plus hat(r_rot)/2 per node. Here the
-// second derivatives of eps(g) come from nested dual numbers over the 9 components of g (the
-// element kernel writes them in closed form); the node map's are the kernel's formulas.
+// The forces of the work function W(eps) = sigma_h . eps + 1/2 eps . C eps follow the chain of
+// the element kernel (element.cpp): increments theta -> u = (y_a, psi_a) -> g = (y', psi, psi')
+// -> eps = (exp(psi)^T y' - e3, Jr(psi) psi'), r = B^T G^T dW/dg; the tangent is
+// B^T G^T (d2W/dg2) G B (d2W/dg2 = F^T C F + sum_k sigma_k d2 eps_k / dg2, sigma = sigma_h + C
+// eps), plus the second derivatives of u(theta) contracted with the gradient, plus hat(r_rot)/2
+// per node. Here the derivatives of W(g) come from nested dual numbers over the 9 components of g
+// (the element kernel writes them in closed form); the node map's are the kernel's formulas.
 #include "beam_fe/dynamics_damping.hpp"
 
 #include <cmath>
@@ -29,8 +29,10 @@ using Vector9d = Eigen::Matrix<double, 9, 1>;
 using dynamics_internal::gauss_rule;
 using dynamics_internal::shape;
 
-/// sigma . eps(g) as a nested dual over g: value, gradient (F^T sigma) and Hessian (S).
-void stress_work_jet(const Vector9d& g, const Vector6d& sigma, Vector9d& grad, Matrix9d& hess) {
+/// W(g) = sigma_h . eps(g) + 1/2 eps(g) . C eps(g) as a nested dual over g: its gradient (F^T
+/// sigma) and Hessian.
+void work_jet(const Vector9d& g, const Vector6d& sigma_h, const Vector6d& C, Vector9d& grad,
+              Matrix9d& hess) {
   using D1 = ad::Dual<double, 9>;
   using D2 = ad::Dual<D1, 9>;
   Eigen::Matrix<D2, 9, 1> x;
@@ -46,10 +48,14 @@ void stress_work_jet(const Vector9d& g, const Vector6d& sigma, Vector9d& grad, M
   const Eigen::Matrix<D2, 3, 3> K2 = K * K;
   Eigen::Matrix<D2, 3, 3> I = Eigen::Matrix<D2, 3, 3>::Identity();
   // exp(psi)^T = I - a K + b K^2, Jr(psi) = I - b K + c K^2.
-  const Eigen::Matrix<D2, 3, 1> nu = (I - k.a * K + k.b * K2) * yp;
+  Eigen::Matrix<D2, 3, 1> e = (I - k.a * K + k.b * K2) * yp;
+  e[2] = e[2] - D2(1.0);
   const Eigen::Matrix<D2, 3, 1> om = (I - k.b * K + k.c * K2) * pp;
   D2 s(0.0);
-  for (int i = 0; i < 3; ++i) s = s + D2(sigma[i]) * nu[i] + D2(sigma[3 + i]) * om[i];
+  for (int i = 0; i < 3; ++i) {
+    s = s + e[i] * (D2(sigma_h[i]) + D2(0.5 * C[i]) * e[i]) +
+        om[i] * (D2(sigma_h[3 + i]) + D2(0.5 * C[3 + i]) * om[i]);
+  }
   for (int i = 0; i < 9; ++i) {
     grad[i] = s.d[i].v;
     for (int j = 0; j < 9; ++j) hess(i, j) = s.d[i].d[j];
@@ -58,9 +64,16 @@ void stress_work_jet(const Vector9d& g, const Vector6d& sigma, Vector9d& grad, M
 
 }  // namespace
 
-void add_fixed_stress_forces(const Discretization& disc, const State& state,
-                             const std::vector<Vector6d>& sigma, VectorXd& r,
-                             Eigen::SparseMatrix<double>* Kg) {
+double viscosity_at(const rod::RodModel& model, double s_m,
+                    const std::optional<double>& override_Pa_s) {
+  if (override_Pa_s) return *override_Pa_s;
+  const rod::Profile& p = model.material.viscosity_profile;
+  return p.is_constant() ? model.material.viscosity_Pa_s : p.value(s_m);
+}
+
+void add_viscous_forces(const Discretization& disc, const State& state,
+                        const std::vector<Vector6d>& sigma, const std::vector<Vector6d>& stiffness,
+                        VectorXd& r, Eigen::SparseMatrix<double>* Kg) {
   const int order = disc.order(), n = order + 1, nu = 6 * n;
   const int ref = order == 1 ? 0 : 1;
   std::vector<double> xi, w;
@@ -113,7 +126,8 @@ void add_fixed_stress_forces(const Discretization& disc, const State& state,
       }
       Vector9d gg;
       Matrix9d S;
-      stress_work_jet(g, sigma[static_cast<std::size_t>(e) * xi.size() + gp], gg, S);
+      const std::size_t point = static_cast<std::size_t>(e) * xi.size() + gp;
+      work_jet(g, sigma[point], stiffness[point], gg, S);
       grad_u += wj * G.transpose() * gg;
       if (Kg) hess_u += wj * G.transpose() * S * G;
     }
@@ -173,18 +187,29 @@ void add_fixed_stress_forces(const Discretization& disc, const State& state,
 }
 
 StrainRateHistory::StrainRateHistory(const Discretization& disc, const rod::RodModel& model,
-                                     double eta, const AlphaParameters& ap, double dt_s)
+                                     const std::optional<double>& eta_override,
+                                     const AlphaParameters& ap, double dt_s)
     : disc_(disc), ap_(ap), h_(dt_s), c_e_(ap.gamma / (ap.beta * dt_s)) {
   // docs/conventions.md "Dynamics": B_se = diag(eta_s A, eta_s A, eta A),
-  // B_bt = diag(eta I_x, eta I_y, eta_s J), eta_s = eta / (2 (1 + poisson)); a uniform body.
-  const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
-  const rod::Section& s = model.section;
-  B_ << eta_s * s.area_m2, eta_s * s.area_m2, eta * s.area_m2, eta * s.I_x_m4, eta * s.I_y_m4,
-      eta_s * s.J_m4;
+  // B_bt = diag(eta I_x, eta I_y, eta_s J), eta_s = eta / (2 (1 + poisson)), at each point's s.
+  const bool uniform = model.uniform_body();
   for (const PointStrain& p : disc.strains(disc.reference_state())) {
-    Vector6d e;
-    e << Vector3d::Zero(), model.reference_curvature_at(p.s_m);
-    eps_ref_.push_back(e);
+    const double eta = viscosity_at(model, p.s_m, eta_override);
+    const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
+    rod::SectionProperties sp;
+    if (uniform) {
+      sp.area_m2 = model.section.area_m2;
+      sp.I_x_m4 = model.section.I_x_m4;
+      sp.I_y_m4 = model.section.I_y_m4;
+      sp.J_m4 = model.section.J_m4;
+    } else {
+      sp = model.section.properties_at(p.s_m);
+    }
+    Vector6d B;
+    B << eta_s * sp.area_m2, eta_s * sp.area_m2, eta * sp.area_m2, eta * sp.I_x_m4,
+        eta * sp.I_y_m4, eta_s * sp.J_m4;
+    B_.push_back(B);
+    cB_.push_back(c_e_ * B);
   }
 }
 
@@ -198,29 +223,30 @@ std::vector<Vector6d> StrainRateHistory::strains(const State& state) const {
   return out;
 }
 
+Vector6d StrainRateHistory::history(std::size_t k) const {
+  return (1.0 - ap_.gamma / ap_.beta) * eps_t_[k] +
+         h_ * (1.0 - ap_.gamma / (2.0 * ap_.beta)) * a_eps_[k];
+}
+
 void StrainRateHistory::reset(const State& state) {
   eps_ = strains(state);
   eps_t_.assign(eps_.size(), Vector6d::Zero());
   a_eps_.assign(eps_.size(), Vector6d::Zero());
 }
 
-void StrainRateHistory::add_history_forces(const State& trial, VectorXd& r,
-                                           Eigen::SparseMatrix<double>* K) const {
-  std::vector<Vector6d> sigma(eps_.size());
+void StrainRateHistory::add_forces(const State& trial, VectorXd& r,
+                                   Eigen::SparseMatrix<double>* K) const {
+  std::vector<Vector6d> sigma_h(eps_.size());
   for (std::size_t k = 0; k < eps_.size(); ++k) {
-    const Vector6d hist = (1.0 - ap_.gamma / ap_.beta) * eps_t_[k] +
-                          h_ * (1.0 - ap_.gamma / (2.0 * ap_.beta)) * a_eps_[k];
-    sigma[k] = B_.cwiseProduct(c_e_ * (eps_ref_[k] - eps_[k]) + hist);
+    sigma_h[k] = B_[k].cwiseProduct(history(k) - c_e_ * eps_[k]);
   }
-  add_fixed_stress_forces(disc_, trial, sigma, r, K);
+  add_viscous_forces(disc_, trial, sigma_h, cB_, r, K);
 }
 
 void StrainRateHistory::advance(const State& state) {
   const std::vector<Vector6d> e1 = strains(state);
   for (std::size_t k = 0; k < e1.size(); ++k) {
-    const Vector6d hist = (1.0 - ap_.gamma / ap_.beta) * eps_t_[k] +
-                          h_ * (1.0 - ap_.gamma / (2.0 * ap_.beta)) * a_eps_[k];
-    const Vector6d et1 = c_e_ * (e1[k] - eps_[k]) + hist;
+    const Vector6d et1 = c_e_ * (e1[k] - eps_[k]) + history(k);
     a_eps_[k] = (et1 - eps_t_[k] - h_ * (1.0 - ap_.gamma) * a_eps_[k]) / (h_ * ap_.gamma);
     eps_t_[k] = et1;
     eps_[k] = e1[k];

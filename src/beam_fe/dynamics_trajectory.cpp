@@ -16,7 +16,7 @@ TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model
   rod::write_trajectory_header(os, model);
   auto write_row = [&] {
     rod::write_trajectory_row(os, dyn.time_s(), dyn.tip_position_W_m(), dyn.kinetic_energy_J(),
-                              dyn.tensions_N(), dyn.elongations_m(), {});  // tension drives only
+                              dyn.tensions_N(), dyn.elongations_m(), dyn.segment_temperatures_K());
     if (after_row) after_row(dyn);
   };
   const BeamDynamicsSummary init = dyn.initialize(loads_at(0.0));
