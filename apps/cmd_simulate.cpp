@@ -237,7 +237,7 @@ void add_simulate_command(CLI::App& app) {
     auto write_row = [&] {
       rod::write_trajectory_row(os, dyn.time_s(), dyn.tip_position_W_m(), dyn.kinetic_energy_J(),
                                 dyn.tensions_N(), dyn.elongations_m(),
-                                dyn.segment_temperatures_K());
+                                dyn.segment_temperatures_K(), dyn.probe_positions_W_m());
     };
     std::string pvd;
     int frame = 0;

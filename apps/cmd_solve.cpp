@@ -167,8 +167,9 @@ namespace {
 
 using study::kDefaultSweepChunk;
 
-/// One CSV row of a sweep point (the columns of the header in add_sweep_command).
-std::string sweep_row(double value, const rod::Result& r) {
+/// One CSV row of a sweep point (the columns of the header in add_sweep_command); n_probes:
+/// the model's probe count.
+std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes) {
   std::string row =
       fmt::format("{},{},{},{},{:.12e},{:.12e},{:.12e},{}", value, r.converged ? 1 : 0,
                   r.iterations, r.residual ? fmt::format("{:.6e}", *r.residual) : std::string(),
@@ -180,6 +181,15 @@ std::string sweep_row(double value, const rod::Result& r) {
     for (const auto& seg : a.segments) {
       row +=
           fmt::format(",{},{:.12e}", seg.second.coils_closed ? 1 : 0, seg.second.contact_force_N);
+    }
+  }
+  // Probes: the header's columns whether or not this point has a solution (empty cells then).
+  for (std::size_t i = 0; i < n_probes; ++i) {
+    if (i < r.probes.size()) {
+      const Eigen::Vector3d& p = r.probes[i].position_W_m;
+      row += fmt::format(",{:.12e},{:.12e},{:.12e}", p.x(), p.y(), p.z());
+    } else {
+      row += ",,,";
     }
   }
   row += '\n';
@@ -303,6 +313,7 @@ void add_sweep_command(CLI::App& app) {
         }
       }
     }
+    for (const auto& p : model.probes) fmt::print(os, ",{0}_x_m,{0}_y_m,{0}_z_m", p.name);
     fmt::print(os, "\n");
 
     // Long sweeps report progress on stderr: in place on a terminal, whole lines in a log.
@@ -316,7 +327,7 @@ void add_sweep_command(CLI::App& app) {
     std::size_t next_chunk = 0, done = 0;
     int failures = 0;
     const auto on_point = [&](std::size_t k, rod::Result&& r) {
-      const std::string row = sweep_row(values[k], r);
+      const std::string row = sweep_row(values[k], r, model.probes.size());
       const std::lock_guard<std::mutex> lock(mutex);
       if (!r.converged) ++failures;
       rows[k - first] = row;

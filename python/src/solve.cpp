@@ -125,6 +125,12 @@ bool all_finite(const rod::Result& r) {
   for (std::size_t k = 0; k < r.centerline_s_m.size(); ++k) {
     if (!std::isfinite(r.centerline_s_m[k]) || !finite3(r.centerline_p_W_m[k])) return false;
   }
+  for (const Eigen::Matrix3d& R : r.centerline_R_WB) {
+    if (!R.allFinite()) return false;
+  }
+  for (const rod::ProbeResult& p : r.probes) {
+    if (!finite3(p.position_W_m)) return false;
+  }
   return true;
 }
 
@@ -306,7 +312,17 @@ void register_solve(py::module_& m) {
                 for (int j = 0; j < 3; ++j) w(k, i, j) = r.r.centerline_R_WB[k](i, j);
             return a;
           },
-          "Body frames R_WB at the centerline samples, shape (n, 3, 3) (not in the file).")
+          "Body frames R_WB at the centerline samples, shape (n, 3, 3), row-major as in the "
+          "file (centerline.rotation).")
+      .def_property_readonly(
+          "probes",
+          [](const Result& r) {
+            py::dict d;
+            for (const rod::ProbeResult& p : r.r.probes) d[py::str(p.name)] = vec3(p.position_W_m);
+            return d;
+          },
+          "The scenario's probes: a dict name -> world position [m], shape (3,), in the "
+          "scenario's order (file: probes[k].position_m); empty without probes.")
       .def(
           "to_dict", [](const Result& r) { return to_python(rod::to_json(r.r)); },
           "The result file's content as a dict (the numbers of the file, bit for bit).")
@@ -509,6 +525,13 @@ the solver runs.)") +
             }
           }
         }
+        for (std::size_t i = 0; i < model.probes.size(); ++i) {
+          for (int c = 0; c < 3; ++c) {
+            column(model.probes[i].name + "_" + "xyz"[c] + "_m", [&, i, c](const rod::Result& r) {
+              return i < r.probes.size() ? r.probes[i].position_W_m[c] : nan;
+            });
+          }
+        }
         py::list status;
         for (const rod::Result& r : results) status.append(r.status);
         cols["status"] = status;
@@ -532,7 +555,8 @@ jobs: threads (1 to 1024; default 1); chunk: points per chunk (default 100).
 Returns a dict of numpy arrays named as the columns of the sweep CSV (temperature_degC or
 tension_N, converged, iterations, residual, tip_x_m, tip_y_m, tip_z_m, bending_radius_m,
 <actuator>_tension_N, <actuator>_elongation_m, TCA drives <actuator>_coils_closed and
-<actuator>_contact_force_N, ...; NaN where the CSV has an empty cell) and a list `status`.
+<actuator>_contact_force_N, ..., per probe <probe>_x_m, <probe>_y_m, <probe>_z_m; NaN where
+the CSV has an empty cell) and a list `status`.
 A point that does not converge is a row with converged False, never an exception.)") +
        kOptionsDoc)
           .c_str());

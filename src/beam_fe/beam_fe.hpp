@@ -170,6 +170,11 @@ class Discretization {
   /// Current length of one string of each actuator [m].
   std::vector<double> string_lengths(const State& state) const;
 
+  /// Centerline pose at reference arc length s_m in [0, L] (beam_fe/probes.cpp): a node's own
+  /// pose, else the interpolation of the element holding s (p = sum N_a p_a, R = R_r exp(sum
+  /// N_a psi_a)), exact for the discrete solution.
+  void pose_at(const State& state, double s_m, Eigen::Vector3d& p_W_m, Eigen::Matrix3d& R_WB) const;
+
   /// Strains at every quadrature point.
   std::vector<PointStrain> strains(const State& state) const;
 
@@ -227,6 +232,9 @@ class Discretization {
   mutable std::vector<int> tca_slots_;  // per TCA unknown: row then column entries, then diagonal
   mutable std::vector<int> constraint_slots_;  // per held direction: 3 row, then 3 column entries
 };
+
+/// The model's probes on `state` (Discretization::pose_at at each probe's s).
+std::vector<rod::ProbeResult> probe_results(const Discretization& disc, const State& state);
 
 /// Solves the model from `state` (warm start if it matches the mesh, else from the
 /// reference configuration), ramping loads and actuation with a load factor lambda = 0 -> 1

@@ -15,8 +15,12 @@ TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model
   TrajectorySummary out;
   rod::write_trajectory_header(os, model);
   auto write_row = [&] {
+    std::vector<Eigen::Vector3d> probes_W_m;
+    for (const rod::ProbeResult& p : probe_results(dyn.discretization(), dyn.state()))
+      probes_W_m.push_back(p.position_W_m);
     rod::write_trajectory_row(os, dyn.time_s(), dyn.tip_position_W_m(), dyn.kinetic_energy_J(),
-                              dyn.tensions_N(), dyn.elongations_m(), dyn.segment_temperatures_K());
+                              dyn.tensions_N(), dyn.elongations_m(), dyn.segment_temperatures_K(),
+                              probes_W_m);
     if (after_row) after_row(dyn);
   };
   const BeamDynamicsSummary init = dyn.initialize(loads_at(0.0));

@@ -422,6 +422,7 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   res.centerline_p_W_m = state.p_W_m;
   for (const Eigen::Quaterniond& q : state.q_WB)
     res.centerline_R_WB.push_back(q.toRotationMatrix());
+  res.probes = probe_results(disc, state);
   try {
     res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
                                                          res.centerline_p_W_m, res.centerline_R_WB);

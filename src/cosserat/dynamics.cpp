@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 #include "cosserat/dynamics_impl.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/probes.hpp"
 
 namespace tcasim::cosserat {
 
@@ -123,6 +124,16 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   tip_mass_kg = o.tip_mass_kg.value_or(model.tip_mass_kg);
   L = model.length_m;
   uniform = dynamics::section_is_uniform(model, o.viscosity_Pa_s);
+  // Probes are reported at grid nodes (docs/scenario-format.md "Probes and frames"): a probe
+  // between the nodes of the uniform grid gets a node of its own, as a breakpoint does (the
+  // shooting state between nodes depends on the history there, which only nodes have).
+  std::vector<double> probe_knots;
+  for (const rod::Probe& p : model.probes) {
+    if (p.s_m <= 0.0 || p.s_m >= L) continue;
+    const double i = p.s_m / L * o.steps;
+    if (!uniform || std::abs(i - std::round(i)) > 1e-9 * o.steps) probe_knots.push_back(p.s_m);
+  }
+  if (!probe_knots.empty()) uniform = false;
   if (uniform) {
     N = o.steps;
     h = L / N;
@@ -131,6 +142,9 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   } else {
     // A node at every breakpoint; each piece between them in equal steps of at most L / N.
     std::vector<double> knots = dynamics::grid_breakpoints(model, o.viscosity_Pa_s);
+    knots.insert(knots.end(), probe_knots.begin(), probe_knots.end());
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
     knots.insert(knots.begin(), 0.0);
     knots.push_back(L);
     s_grid.assign(1, 0.0);
@@ -422,6 +436,15 @@ Eigen::Vector3d RodDynamics::tip_position_W_m() const {
 }
 Eigen::Matrix3d RodDynamics::tip_rotation_W() const {
   return Eigen::Map<const Mat3>(impl_->grid_converged.back().data() + kR);
+}
+std::vector<Eigen::Vector3d> RodDynamics::probe_positions_W_m() const {
+  std::vector<Eigen::Vector3d> p;
+  std::vector<Eigen::Matrix3d> R;
+  for (const Eigen::VectorXd& y : impl_->grid_converged) {
+    p.push_back(y.segment<3>(kP));
+    R.push_back(Eigen::Map<const Mat3>(y.data() + kR));
+  }
+  return rod::probe_positions_at_samples(impl_->model, impl_->s_grid, p, R);
 }
 
 }  // namespace tcasim::cosserat

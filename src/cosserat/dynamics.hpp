@@ -119,6 +119,8 @@ class RodDynamics {
   int steps() const;
   Eigen::Vector3d tip_position_W_m() const;
   Eigen::Matrix3d tip_rotation_W() const;
+  /// World positions of the model's probes [m], in its order (each probe's s is a grid node).
+  std::vector<Eigen::Vector3d> probe_positions_W_m() const;
   /// Kinetic energy 1/2 int (rho A |q|^2 + w . rho J w) ds + 1/2 m_tip |q(L)|^2 [J].
   double kinetic_energy_J() const;
   /// Potential energy of the current loads taken as constant [J]: strain energy

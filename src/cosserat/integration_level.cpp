@@ -10,7 +10,7 @@ namespace tcasim::cosserat::internal {
 IntegrationLevel::IntegrationLevel(int dim, int nx, const ode::IntegratorOptions& options,
                                    Kinematics kinematics, bool sensitivities,
                                    const PieceHooks* pieces)
-    : pieces_(pieces) {
+    : dim_(dim), options_(options), kinematics_(kinematics), pieces_(pieces) {
   if (pieces_) {
     const std::vector<double>& k = pieces_->knots;
     require(k.size() >= 2, "pieces.knots", static_cast<double>(k.size()), "must have >= 2 knots");
@@ -87,6 +87,39 @@ bool IntegrationLevel::integrate(const ode::RhsFunction& f, double L, Eigen::Vec
   }
   const ode::IntegrationSummary is = flat_->integrate(f, 0.0, L, y, observer);
   return is.status == ode::IntegrationSummary::Status::kSuccess && y.allFinite();
+}
+
+bool IntegrationLevel::integrate_between(const ode::RhsFunction& f, double L, double s0,
+                                         double s1, Eigen::VectorXd& y) {
+  // The step length h of the level where [s0, s1] lies: steps x (piece length) / L per piece.
+  double h = L / std::max(1, options_.steps);
+  if (pieces_) {
+    const std::vector<double>& k = pieces_->knots;
+    std::size_t i = 0;
+    while (i + 2 < k.size() && k[i + 1] <= s0) ++i;
+    const double share = (k[i + 1] - k[i]) / (k.back() - k.front());
+    h = (k[i + 1] - k[i]) / std::max(1, static_cast<int>(std::lround(options_.steps * share)));
+    pieces_->enter(k[i], k[i + 1]);
+  }
+  // Steps of at most h (the relative slack keeps a span of exactly h in one step).
+  const int n = std::max(1, static_cast<int>(std::ceil((s1 - s0) / h * (1.0 - 1e-12))));
+  bool ok = false;
+  if (kinematics_ == Kinematics::kLieGroup) {
+    LieGroupRk4 lie(dim_, 0, n);
+    ok = lie.integrate(f, s0, s1, y) && y.allFinite();
+  } else {
+    ode::IntegratorOptions o = options_;
+    if (ode::is_fixed_step(o.method)) o.steps = n;
+    o.output_intervals = 0;
+    ode::Integrator in(dim_, o);
+    ok = in.integrate(f, s0, s1, y).status == ode::IntegrationSummary::Status::kSuccess &&
+         y.allFinite();
+  }
+  if (pieces_) {
+    const std::vector<double>& k = pieces_->knots;
+    pieces_->enter(k[k.size() - 2], k.back());
+  }
+  return ok;
 }
 
 bool IntegrationLevel::integrate_sensitivities(const ode::RhsFunction& f, double L,

@@ -47,6 +47,13 @@ class IntegrationLevel {
   /// variational right-hand side f. Needs has_sensitivities(). False as integrate().
   bool integrate_sensitivities(const ode::RhsFunction& f, double L, Eigen::VectorXd& Y);
 
+  /// Integrates y, the state at s0 (after any jump there), to s1 > s0, both in one piece of
+  /// the piecewise IVP, with this level's method in steps no longer than its own (CVODE: its
+  /// tolerances): the state at a point between sample nodes, integrated, not interpolated.
+  /// Leaves the hooks in the last piece, as integrate() does. False as integrate().
+  bool integrate_between(const ode::RhsFunction& f, double L, double s0, double s1,
+                         Eigen::VectorXd& y);
+
   bool has_sensitivities() const {
     return flat_sens_.has_value() || lie_sens_.has_value() || !piece_flat_sens_.empty() ||
            !piece_lie_sens_.empty();
@@ -57,6 +64,9 @@ class IntegrationLevel {
   bool integrate_pieces(const ode::RhsFunction& f, Eigen::VectorXd& y,
                         const ode::Observer& observer, bool sens);
 
+  int dim_;
+  ode::IntegratorOptions options_;
+  Kinematics kinematics_;
   const PieceHooks* pieces_ = nullptr;
   std::vector<ode::Integrator> piece_flat_, piece_flat_sens_;  // one per piece
   std::vector<LieGroupRk4> piece_lie_, piece_lie_sens_;

@@ -3,6 +3,7 @@
 // cosserat/shooting_impl.hpp.
 #include "cosserat/shooting.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -11,6 +12,7 @@
 #include "common/error.hpp"
 #include "cosserat/layout.hpp"
 #include "cosserat/shooting_impl.hpp"
+#include "rod/probes.hpp"
 
 namespace tcasim::cosserat {
 
@@ -269,10 +271,13 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
   }
   set_parameters(act, 1.0, sol.unknowns);
   initial_state(sol.unknowns, y);
-  auto observer = [&res](double s, const Eigen::VectorXd& yy) {
+  // With probes, the full state at every sample: the start of each probe's integration.
+  std::vector<Eigen::VectorXd> sample_states;
+  auto observer = [&](double s, const Eigen::VectorXd& yy) {
     res.centerline_s_m.push_back(s);
     res.centerline_p_W_m.push_back(yy.segment<3>(kP));
     res.centerline_R_WB.push_back(Eigen::Map<const Mat3>(yy.data() + kR));
+    if (!model.probes.empty()) sample_states.push_back(yy);
   };
   const bool sampled = output_level->integrate(rhs, L, y, observer);
   if (!sampled) {
@@ -285,6 +290,11 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
   }
   res.tip_position_W_m = y.segment<3>(kP);
   res.tip_R_WB = Eigen::Map<const Mat3>(y.data() + kR);
+  if (!probe_results(res, sample_states)) {
+    res.converged = false;
+    res.message = "IVP failed while evaluating the probes";
+    return res;
+  }
   if (n_con > 0) res.tip_reaction_force_W_N = reaction_W(sol.unknowns);
   for (int i = 0; i < n_act; ++i) {
     res.actuators[i].tension_N = cT[i] / count[i];
@@ -298,6 +308,28 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     res.bending_radius_m.reset();
   }
   return res;
+}
+
+bool ShootingSolver::Impl::probe_results(rod::Result& res,
+                                         const std::vector<Eigen::VectorXd>& sample_states) {
+  const std::vector<double>& s = res.centerline_s_m;
+  Eigen::VectorXd yp(dim);
+  for (const rod::Probe& probe : model.probes) {
+    const int at = rod::sample_at(s, probe.s_m);
+    if (at >= 0) {
+      res.probes.push_back({probe.name, rod::probe_position_W_m(probe, res.centerline_p_W_m[at],
+                                                                res.centerline_R_WB[at])});
+      continue;
+    }
+    // From the last sample before s (in s's piece: the knots are samples) on to s.
+    const auto k = static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), probe.s_m) -
+                                            s.begin()) - 1;
+    yp = sample_states[k];
+    if (!output_level->integrate_between(rhs, L, s[k], probe.s_m, yp)) return false;
+    res.probes.push_back({probe.name, rod::probe_position_W_m(probe, yp.segment<3>(kP),
+                                                              Eigen::Map<const Mat3>(yp.data() + kR))});
+  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------

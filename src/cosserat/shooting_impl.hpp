@@ -59,6 +59,10 @@ struct ShootingSolver::Impl : internal::TipConditions {
   double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
   void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
   rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
+  /// Fills res.probes after make_result's sampling pass: a probe at a sample from it, any other
+  /// from the sample before its s integrated on to s (output_level->integrate_between).
+  /// False when such an integration fails.
+  bool probe_results(rod::Result& res, const std::vector<Eigen::VectorXd>& sample_states);
 
   // --- the shooting map r(x) (shooting_map.cpp)
   /// Scaled residual at x; y(L) left in `y`. False when the IVP or a TCA law fails.

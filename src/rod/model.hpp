@@ -147,6 +147,14 @@ struct TipConstraint {
   std::optional<Eigen::Vector3d> normal_W;  ///< unit; absent = pinned
 };
 
+/// A point fixed to the body (docs/scenario-format.md "Probes and frames"): a marker, a
+/// sensor or a contact point at arc length s with an offset in the body frame there.
+struct Probe {
+  std::string name;  ///< unique; names the CSV columns <name>_x_m, <name>_y_m, <name>_z_m
+  double s_m = 0.0;  ///< reference arc length, in [0, L]
+  Eigen::Vector3d offset_B_m = Eigen::Vector3d::Zero();  ///< (x, y) in the section, z along e3
+};
+
 /// Everything a solver needs to know about one rod robot.
 struct RodModel {
   std::string schema;
@@ -175,6 +183,8 @@ struct RodModel {
   /// Lumped thermal parameters of the TCAs that have a `thermal` block, by TCA id.
   std::map<std::string, tca::ThermalParameters> tca_thermal;
   std::vector<Actuator> actuators;
+  /// Body-fixed points both solvers report exactly at their s (`probes`, default none).
+  std::vector<Probe> probes;
 
   /// K_nu = diag(G A, G A, E A) [N].
   Eigen::Vector3d shear_extension_stiffness() const;

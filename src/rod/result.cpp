@@ -46,6 +46,16 @@ class FiniteWriter {
     for (int i = 0; i < 3; ++i) a.push_back(number(v[i], fmt::format("{}[{}]", field, i)));
     return a;
   }
+  /// A 3x3 matrix as three rows (row-major), as tip.rotation.
+  json matrix(const Eigen::Matrix3d& m, const std::string& field) {
+    json rows = json::array();
+    for (int r = 0; r < 3; ++r) {
+      json row = json::array();
+      for (int c = 0; c < 3; ++c) row.push_back(number(m(r, c), fmt::format("{}[{}][{}]", field, r, c)));
+      rows.push_back(row);
+    }
+    return rows;
+  }
   const std::vector<std::string>& bad() const { return bad_; }
 
  private:
@@ -105,16 +115,8 @@ nlohmann::json to_json(const Result& result) {
   j["characteristic_force_N"] = w.number(result.characteristic_force_N, "characteristic_force_N");
   j["wall_time_s"] = w.number(result.wall_time_s, "wall_time_s");
 
-  json rotation = json::array();
-  for (int r = 0; r < 3; ++r) {
-    json row = json::array();
-    for (int c = 0; c < 3; ++c) {
-      row.push_back(w.number(result.tip_R_WB(r, c), fmt::format("tip.rotation[{}][{}]", r, c)));
-    }
-    rotation.push_back(row);
-  }
   j["tip"] = {{"position_m", w.vector(result.tip_position_W_m, "tip.position_m")},
-              {"rotation", rotation}};
+              {"rotation", w.matrix(result.tip_R_WB, "tip.rotation")}};
 
   json actuators = json::array();
   for (std::size_t i = 0; i < result.actuators.size(); ++i) {
@@ -151,14 +153,32 @@ nlohmann::json to_json(const Result& result) {
     j["tip_reaction_force_N"] = w.vector(*result.tip_reaction_force_W_N, "tip_reaction_force_N");
   }
 
+  if (!result.probes.empty()) {
+    json probes = json::array();
+    for (std::size_t i = 0; i < result.probes.size(); ++i) {
+      probes.push_back(
+          {{"name", result.probes[i].name},
+           {"position_m",
+            w.vector(result.probes[i].position_W_m, fmt::format("probes[{}].position_m", i))}});
+    }
+    j["probes"] = probes;
+  }
+
   json s_m = json::array();
   json p_m = json::array();
+  json R_m = json::array();
+  // Rotations are written when every sample has one (a result built by hand may omit them).
+  const bool rotations = result.centerline_R_WB.size() == result.centerline_s_m.size();
   for (std::size_t k = 0; k < result.centerline_s_m.size(); ++k) {
     s_m.push_back(w.number(result.centerline_s_m[k], fmt::format("centerline.s_m[{}]", k)));
     p_m.push_back(
         w.vector(result.centerline_p_W_m[k], fmt::format("centerline.position_m[{}]", k)));
+    if (rotations) {
+      R_m.push_back(w.matrix(result.centerline_R_WB[k], fmt::format("centerline.rotation[{}]", k)));
+    }
   }
   j["centerline"] = {{"s_m", s_m}, {"position_m", p_m}};
+  if (rotations) j["centerline"]["rotation"] = R_m;
 
   bool converged = result.converged;
   std::string message = result.message;

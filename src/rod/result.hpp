@@ -29,6 +29,12 @@ struct ActuatorResult {
   std::vector<std::pair<tca::Segment, tca::SegmentContact>> segments;
 };
 
+/// A probe of the model in a solution (docs/scenario-format.md "Probes and frames").
+struct ProbeResult {
+  std::string name;
+  Eigen::Vector3d position_W_m = Eigen::Vector3d::Zero();  ///< p(s) + R(s) offset, world frame
+};
+
 /// One solve's outcome, as written to a result file.
 struct Result {
   std::string scenario;  ///< RodModel::name
@@ -60,6 +66,9 @@ struct Result {
   std::vector<double> centerline_s_m;
   std::vector<Eigen::Vector3d> centerline_p_W_m;
   std::vector<Eigen::Matrix3d> centerline_R_WB;
+  /// The model's probes, evaluated by the solver exactly at their s (empty without probes or
+  /// without a solution; written as `probes` only when non-empty).
+  std::vector<ProbeResult> probes;
 };
 
 /// Serializes a result. Non-finite numbers are never written: a result holding one is

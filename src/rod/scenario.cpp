@@ -134,7 +134,7 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   const std::string schema = peek_choice(doc, "", "schema", {kScenarioSchema});
   const Obj o(doc, "",
               {"schema", "name", "comment", "body", "gravity_m_s2", "tip_load", "tip_mass_kg",
-               "tip_constraint", "base", "tcas", "actuators"});
+               "tip_constraint", "base", "tcas", "actuators", "probes"});
   RodModel m;
   m.schema = schema;
   m.name = o.nonempty_string("name");
@@ -218,6 +218,7 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
       m.actuators.push_back(std::move(a));
     }
   }
+  if (o.has("probes")) m.probes = parse_probes(o.required("probes"), "probes", m.length_m);
   return m;
 }
 

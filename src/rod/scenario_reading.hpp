@@ -236,6 +236,10 @@ std::map<std::string, std::shared_ptr<const tca::Tca>> parse_tcas(const json& j,
 /// One entry of `actuators` (routing, count, drive, rest length) on the body `model`.
 Actuator parse_actuator(const json& j, const std::string& path, const RodModel& model);
 
+/// The top-level `probes` list (docs/scenario-format.md "Probes and frames") on a body of
+/// length body_length_m (scenario_probes.cpp).
+std::vector<Probe> parse_probes(const json& j, const std::string& path, double body_length_m);
+
 // ---------------------------------------------------------------------------------------
 // Time profiles and electro-thermal drives (scenario_time_profiles.cpp, scenario_thermal.cpp).
 

@@ -18,13 +18,15 @@ void write_trajectory_header(std::ostream& os, const RodModel& model) {
       os << ',' << a.name << "_temperature_degC";
     }
   }
+  for (const auto& p : model.probes) os << fmt::format(",{0}_x_m,{0}_y_m,{0}_z_m", p.name);
   os << '\n';
 }
 
 void write_trajectory_row(std::ostream& os, double t_s, const Eigen::Vector3d& tip_W_m,
                           double kinetic_energy_J, const std::vector<double>& tensions_N,
                           const std::vector<double>& elongations_m,
-                          const std::vector<std::vector<double>>& temperatures_K) {
+                          const std::vector<std::vector<double>>& temperatures_K,
+                          const std::vector<Eigen::Vector3d>& probes_W_m) {
   os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", t_s, tip_W_m.x(), tip_W_m.y(),
                     tip_W_m.z(), kinetic_energy_J);
   for (std::size_t i = 0; i < tensions_N.size(); ++i) {
@@ -35,6 +37,8 @@ void write_trajectory_row(std::ostream& os, double t_s, const Eigen::Vector3d& t
     }
     for (const double T_K : temperatures_K[i]) os << fmt::format(",{:.9f}", units::K_to_degC(T_K));
   }
+  for (const Eigen::Vector3d& p : probes_W_m)
+    os << fmt::format(",{:.12e},{:.12e},{:.12e}", p.x(), p.y(), p.z());
   os << '\n';
 }
 
