@@ -127,8 +127,12 @@ PLOT_DESCRIPTIONS = {
                            "tip-force pulse, undamped and damped",
     "dynamics_voltage_step.png": "Rod dynamics: voltage step on the circular manipulator, TCA "
     "temperature against the closed-form step response and the tip settling to the static answer",
+    "dynamics_pwm.png": "Rod dynamics: PWM-driven three-TCA rod in 3-D, TCA temperatures against the "
+    "closed-form PWM response, the tip against the static tip at the instantaneous temperatures, and the "
+    "tip path across the rod's axis",
     "dynamics_orders.png": "Rod dynamics: errors against dt (frequencies, energy drift and balance, forced "
-                           "trajectory) and the quasi-static gap against the ramp rate, with observed orders",
+                           "trajectory) and the quasi-static gaps (tip-force ramp, heating ramp, PWM drive) "
+                           "against the drive rate, with observed orders",
 }
 
 
@@ -326,6 +330,9 @@ KNOWN_TABLES = [
       "timoshenko_correction", "error_vs_timoshenko", "error_vs_timoshenko_plus_scheme"]),
     ("dt_order.csv", "Rod dynamics: errors against dt and observed orders"),
     ("quasi_static_order.csv", "Rod dynamics: quasi-static gap against the ramp rate"),
+    ("heated_ramp_order.csv", "Rod dynamics: heated manipulator, gap to the static solution against the ramp rate"),
+    ("pwm_quasi_static_order.csv", "Rod dynamics: PWM-driven three-TCA rod, gap to the quasi-static tip against "
+     "the drive rate"),
     ("shapes_summary.csv", "Suite scenarios: tip, global equilibrium (relative imbalance), timing",
      ["scenario", "status", "iterations", "tip_x_m", "tip_y_m", "tip_z_m", "bending_radius_m", "load_scale_N",
       "force_imbalance_rel", "moment_imbalance_rel", "imbalance_8_steps", "imbalance_16_steps", "wall_time_s",

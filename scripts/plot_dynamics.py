@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Plots the CSV files of validate_dynamics: dynamics_release.png (released cantilever: tip
 trajectory and energies), dynamics_energy.png (pulse-forced rod: energy, work, dissipation and
-the balance residual), dynamics_orders.png (errors against dt and ramp rate with the observed
-orders).
+the balance residual), dynamics_orders.png (errors against dt and the quasi-static gaps against
+the drive rate, with the observed orders), dynamics_voltage_step.png (full run) and
+dynamics_pwm.png (PWM-driven three-TCA rod: temperatures against the closed form, the tip
+against the static tip at the instantaneous temperatures, the tip path across the axis).
 
 Usage: /usr/bin/python3 scripts/plot_dynamics.py OUT_DIR
 """
@@ -75,23 +77,26 @@ def plot_energy(out_dir):
 
 def plot_orders(out_dir):
     studies = defaultdict(list)
-    for name in ("dt_order.csv", "quasi_static_order.csv"):
+    # Panel a: orders in dt; panel b: quasi-static gaps against the drive rate.
+    panel_of = {"dt_order.csv": "a", "quasi_static_order.csv": "b", "heated_ramp_order.csv": "b",
+                "pwm_quasi_static_order.csv": "b"}
+    for name, panel in panel_of.items():
         path = f"{out_dir}/{name}"
         if os.path.exists(path):
             for r in read(path):
-                studies[r["study"]].append(r)
+                studies[(panel, r["study"])].append(r)
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
-    for study, rs in studies.items():
+    for (panel, study), rs in studies.items():
         h, e = column(rs, "h"), column(rs, "error")
         orders = [r["observed_order"] for r in rs if r["observed_order"]]
         label = f"{study} [{', '.join(f'{float(o):.2f}' for o in orders)}]"
-        ax = b if "quasi-static" in study else a
+        ax = b if panel == "b" else a
         ax.loglog(h, e, marker="o", label=label)
     a.set_xlabel("dt [s]")
     a.set_ylabel("error (relative)")
     a.set_title("Order in dt (observed orders in brackets)")
-    b.set_xlabel("ramp rate 1 / tau [1/s]")
-    b.set_ylabel("largest gap / L")
+    b.set_xlabel("drive rate: 1 / tau [1/s] (ramps), 1 / slow-down (PWM)")
+    b.set_ylabel("largest gap (/ L; PWM: / tip travel)")
     b.set_title("Quasi-static limit")
     for ax in (a, b):
         ax.grid(True, which="both", alpha=0.3)
@@ -132,11 +137,54 @@ def plot_voltage_step(out_dir):
     return True
 
 
+def plot_pwm(out_dir):
+    """PWM-driven three-TCA rod (the run at the scenario's own rate, slow = 1)."""
+    path = f"{out_dir}/pwm.csv"
+    if not os.path.exists(path):
+        return False
+    rows = [r for r in read(path) if float(r["slow"]) == 1.0]
+    t = column(rows, "t_s")
+    names = [k[: -len("_closed_form_degC")] for k in rows[0] if k.endswith("_closed_form_degC")]
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(13, 3.8))
+    for name in names:
+        line, = a.plot(t, column(rows, f"{name}_temperature_degC"), label=f"{name} (dynamics)")
+        a.plot(t, column(rows, f"{name}_closed_form_degC"), "k:", lw=1)
+    a.plot([], [], "k:", lw=1, label="closed form (piecewise exponential)")
+    a.set_xlabel("t [s]")
+    a.set_ylabel("temperature [degC]")
+    a.set_title("PWM voltages: TCA temperatures")
+    a.legend(fontsize=7)
+    for key, label in (("x", "x"), ("y", "y"), ("z", "z")):
+        line, = b.plot(t, [1e3 * v for v in column(rows, f"tip_{key}_m")], label=f"tip {label}")
+        b.plot(t, [1e3 * v for v in column(rows, f"static_tip_{key}_m")], ":", color=line.get_color(),
+               label=f"static at the instantaneous temperatures ({label})")
+    b.set_xlabel("t [s]")
+    b.set_ylabel("tip position [mm]")
+    b.set_title("Tip against the quasi-static tip")
+    b.legend(fontsize=6)
+    c.plot([1e3 * v for v in column(rows, "tip_x_m")], [1e3 * v for v in column(rows, "tip_y_m")],
+           label="dynamics")
+    c.plot([1e3 * v for v in column(rows, "static_tip_x_m")], [1e3 * v for v in column(rows, "static_tip_y_m")],
+           ":", label="quasi-static")
+    c.set_xlabel("tip x [mm]")
+    c.set_ylabel("tip y [mm]")
+    c.set_title("Tip path across the axis (out of plane)")
+    c.set_aspect("equal", adjustable="datalim")
+    c.legend(fontsize=7)
+    for ax in (a, b, c):
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_pwm.png", dpi=110)
+    plt.close(fig)
+    return True
+
+
 def main(out_dir):
     plot_release(out_dir)
     plot_energy(out_dir)
     plot_orders(out_dir)
     extra = ", dynamics_voltage_step.png" if plot_voltage_step(out_dir) else ""
+    extra += ", dynamics_pwm.png" if plot_pwm(out_dir) else ""
     print(f"wrote {out_dir}/dynamics_release.png, dynamics_energy.png, dynamics_orders.png{extra}")
 
 

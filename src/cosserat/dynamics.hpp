@@ -136,6 +136,15 @@ class RodDynamics {
   /// states, else the loads' temperatures.
   std::vector<std::vector<double>> segment_temperatures_K() const;
 
+  /// For derivative tests: the Newton system of the last solve (the last step's, or the static
+  /// initialization's) at scaled unknowns u, u_i = z_i / scale_i with z = ((N_B, M_B) and the
+  /// TCA tensions at s = 0, then the whole state at the start of each further interval): the
+  /// scaled residual r and, with J, its Jacobian dr/du (the matrix Newton factorizes). False
+  /// where the residual cannot be evaluated. The next step starts with a fresh Jacobian.
+  bool newton_system(const Eigen::VectorXd& u, Eigen::VectorXd& r, Eigen::MatrixXd* J);
+  /// The scaled unknowns u of the last converged solve (newton_system).
+  Eigen::VectorXd scaled_unknowns() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -73,6 +73,8 @@ struct RodDynamics::Impl {
                     Eigen::MatrixXd* G) const;
   /// Newton (chord) iterations from z.
   DynamicsSummary solve(Eigen::VectorXd& z);
+  /// Scale of each unknown (the state scales of its component): Newton's step is dz = scale u.
+  Eigen::VectorXd unknown_scale() const;
   void set_loads(const rod::Loads& loads);
   void set_scales();
   int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions

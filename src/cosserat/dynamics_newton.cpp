@@ -10,13 +10,18 @@ namespace tcasim::cosserat {
 
 using namespace dynamics_names;
 
+Eigen::VectorXd RodDynamics::Impl::unknown_scale() const {
+  Eigen::VectorXd s(unknowns());
+  s.head<6>() = scale.segment<6>(kN);
+  for (int j = 0; j < n_tca; ++j) s[6 + j] = scale[kT + j];
+  for (int k = 1; k < M; ++k) s.segment(n0() + (k - 1) * D, D) = scale;
+  return s;
+}
+
 DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   DynamicsSummary sum;
   const int n = unknowns();
-  Eigen::VectorXd unknown_scale(n);
-  unknown_scale.head<6>() = scale.segment<6>(kN);
-  for (int j = 0; j < n_tca; ++j) unknown_scale[6 + j] = scale[kT + j];
-  for (int k = 1; k < M; ++k) unknown_scale.segment(n0() + (k - 1) * D, D) = scale;
+  const Eigen::VectorXd scale_z = unknown_scale();
   Eigen::VectorXd r(n), z_old = zz, dz = Eigen::VectorXd::Zero(n);
   double rn_old = HUGE_VAL, lambda = 1.0;
   bool need_fresh = !lu_valid || lu_c0 != c0_active;
@@ -86,7 +91,7 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
       sum.message = "the Newton step is not finite";
       return sum;
     }
-    dz = u.cwiseProduct(unknown_scale);
+    dz = u.cwiseProduct(scale_z);
     lambda = 1.0;
     zz = z_old + dz;
     step_taken = true;
@@ -94,6 +99,20 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     if (!fresh) ++stale_iterations;
     ++sum.iterations;
   }
+}
+
+bool RodDynamics::newton_system(const Eigen::VectorXd& u, Eigen::VectorXd& r,
+                                Eigen::MatrixXd* J) {
+  Impl& d = *impl_;
+  if (u.size() != d.unknowns()) return false;
+  const bool ok = d.evaluate(u.cwiseProduct(d.unknown_scale()), r, J != nullptr);
+  if (ok && J) *J = d.dense ? d.J_dense_ : Eigen::MatrixXd(d.J_);
+  d.lu_valid = false;  // the factorization is no longer the one of the step's iterate
+  return ok;
+}
+
+Eigen::VectorXd RodDynamics::scaled_unknowns() const {
+  return impl_->z.cwiseQuotient(impl_->unknown_scale());
 }
 
 }  // namespace tcasim::cosserat

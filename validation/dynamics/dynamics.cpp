@@ -25,9 +25,17 @@
 //   5. Quasi-static limit (full run): damped rod (damping ratio 0.5) under a smoothstep tip-force
 //      ramp over tau = 1, 2, 4 s; the gap to the static shooting solution at the instantaneous
 //      force falls like 1 / tau (order in [0.85, 1.15]). Writes quasi_static.csv.
-//   6. TCA cases (voltage step on the circular manipulator, PWM-driven three-TCA rod): hook
-//      run_tca_cases(): a voltage step on the paper's circular manipulator (full run; the
-//      PWM-driven three-TCA rod is still to come).
+//   6. Voltage step on the paper's circular manipulator (full run): temperature against the
+//      closed-form step response, settling to the static answer at the steady temperature.
+//   7. PWM-driven three-TCA rod in 3-D (validation/scenarios/three-tca-pwm.json; quick: shorter
+//      and two drive rates): temperatures against the closed-form PWM response and its periodic
+//      orbit to 1e-9 K, a tip path out of plane, the gap to the static tip at the instantaneous
+//      temperatures falling like 1 / s as the drive is slowed s times (order in [0.85, 1.15]).
+//      Writes pwm.csv, pwm_quasi_static_order.csv (validation/dynamics/tca_cases.cpp).
+//   8. Heated quasi-static limit: the circular manipulator (damping ratio ~0.5) heated 25 ->
+//      90 degC by smoothstep ramps over tau = 1, 2, 4 s (quick 1, 2 s at dt 10 ms): the gap to the static
+//      solution at the instantaneous temperature falls like 1 / tau (order in [0.85, 1.15]).
+//      Writes heated_ramp.csv, heated_ramp_order.csv.
 // Usage
 //   validate_dynamics --out-dir out/dynamics            (full: minutes)
 //   validate_dynamics --quick --out-dir /tmp/dynamics   (seconds)
@@ -48,10 +56,42 @@
 #include "tca/thermal.hpp"
 #include "validation/common/gates.hpp"
 #include "validation/dynamics/dynamics_checks.hpp"
+#include "validation/dynamics/tca_cases.hpp"
+
+namespace tcasim::dynamics_validation {
+
+namespace {
+/// Smallest and largest observed order of a ladder (h decreasing).
+std::pair<double, double> order_range(const std::vector<double>& h, const std::vector<double>& e) {
+  const std::vector<double> p = observed_orders(h, e);
+  double lo = 1e300, hi = -1e300;
+  for (const double v : p) {
+    if (!std::isfinite(v)) return {v, v};  // a NaN order fails the gates
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return {lo, hi};
+}
+}  // namespace
+
+void gate_orders(validation::Gates& g, const std::string& name, const std::vector<double>& h,
+                 const std::vector<double>& e, double expected, double tol, std::ofstream& csv) {
+  const std::vector<double> p = observed_orders(h, e);
+  for (std::size_t i = 0; i < h.size(); ++i)
+    // The study name is quoted: it may hold commas.
+    csv << fmt::format("\"{}\",{:.6e},{:.6e},{}\n", name, h[i], e[i],
+                       i == 0 ? std::string() : fmt::format("{:.4f}", p[i - 1]));
+  const auto [lo, hi] = order_range(h, e);
+  g.within(name + ": smallest observed order", lo, expected - tol, expected + tol);
+  g.within(name + ": largest observed order", hi, expected - tol, expected + tol);
+}
+
+}  // namespace tcasim::dynamics_validation
 
 namespace {
 
 using namespace tcasim;
+using dynamics_validation::gate_orders;
 namespace dc = tcasim::dynamics_checks;
 using validation::Gates;
 
@@ -67,30 +107,6 @@ cosserat::DynamicsOptions options_at(const rod::RodModel& m, double dt, double a
 double tip_force_for(const rod::RodModel& m, double fraction) {
   const dc::Beam b = dc::beam_of(m, 0.0);
   return fraction * 3.0 * b.EI / (b.L * b.L);
-}
-
-/// Smallest and largest observed order of a ladder (h decreasing).
-std::pair<double, double> order_range(const std::vector<double>& h, const std::vector<double>& e) {
-  const std::vector<double> p = observed_orders(h, e);
-  double lo = 1e300, hi = -1e300;
-  for (const double v : p) {
-    if (!std::isfinite(v)) return {v, v};  // a NaN order fails the gates
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  return {lo, hi};
-}
-
-void gate_orders(Gates& g, const std::string& name, const std::vector<double>& h,
-                 const std::vector<double>& e, double expected, double tol, std::ofstream& csv) {
-  const std::vector<double> p = observed_orders(h, e);
-  for (std::size_t i = 0; i < h.size(); ++i)
-    // The study name is quoted: it may hold commas.
-    csv << fmt::format("\"{}\",{:.6e},{:.6e},{}\n", name, h[i], e[i],
-                       i == 0 ? std::string() : fmt::format("{:.4f}", p[i - 1]));
-  const auto [lo, hi] = order_range(h, e);
-  g.within(name + ": smallest observed order", lo, expected - tol, expected + tol);
-  g.within(name + ": largest observed order", hi, expected - tol, expected + tol);
 }
 
 // Step 1 ---------------------------------------------------------------------------------------
@@ -361,9 +377,8 @@ void quasi_static(Gates& g, const std::string& out) {
 }
 
 // Step 6 ---------------------------------------------------------------------------------------
-/// TCA cases: a voltage step on the paper's circular manipulator (temperature, tension and tip
-/// over time, settling to the static answer at the steady temperature); voltage_step.csv. The
-/// PWM-driven three-TCA rod in 3-D is still to come.
+/// A voltage step on the paper's circular manipulator (temperature, tension and tip over time,
+/// settling to the static answer at the steady temperature); voltage_step.csv.
 void run_tca_cases(Gates& g, const std::string& out, bool quick) {
   if (quick) {
     // The quick run's TCA check is the unit test RodDynamicsTca (a shortened time constant).
@@ -481,6 +496,8 @@ int main(int argc, char** argv) {
       quasi_static(gates, out_dir);
     }
     run_tca_cases(gates, out_dir, quick);
+    dynamics_validation::pwm_three_tca(gates, out_dir, quick);
+    dynamics_validation::heated_quasi_static(gates, out_dir, quick);
   } catch (const std::exception& e) {
     gates.check("validate_dynamics: runs without an exception", false, e.what(), "no exception");
   }
