@@ -1,6 +1,7 @@
 // `tcasim compare` and `tcasim converge`: the FE against the shooting solver on one scenario
 // (the implementation is shared with validate_crosscheck / validate_convergence:
-// crosscheck/crosscheck.hpp).
+// crosscheck/crosscheck.hpp); `tcasim compare --dynamic`: the two dynamics methods over time
+// (shared with validate_dynamic_crosscheck: crosscheck/dynamic.hpp).
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -14,6 +15,7 @@
 #include "apps/commands.hpp"
 #include "common/error.hpp"
 #include "crosscheck/crosscheck.hpp"
+#include "crosscheck/dynamic.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::app {
@@ -68,6 +70,91 @@ void print_reference(std::FILE* f, const xc::Reference& ref, int steps) {
   fmt::print(f, "\n");
 }
 
+/// Flags of `tcasim compare --dynamic` (the static comparison's --elements and --orders give
+/// the FE meshes).
+struct DynamicFlags {
+  double duration_s = 0.0, dt_s = 0.0, alpha = -0.2, rho_inf = 0.9;
+  int steps = 0, output_every = 1, max_iterations = 30;
+  bool release_tip_load = false;
+};
+
+/// Time steps of one run: as `tcasim simulate` (1e8 steps are hours).
+constexpr long long kMaxTimeSteps = 100000000;
+
+/// `tcasim compare --dynamic`: one shooting run against the FE on each mesh; the per-time CSV
+/// to `out` (stdout when empty), the summary (max tip difference over time) to stderr.
+void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
+                     const std::vector<int>& elements, const std::vector<int>& orders,
+                     const std::string& out_path) {
+  require(std::isfinite(f.duration_s) && f.duration_s > 0.0, "--duration-s", f.duration_s,
+          "must be > 0");
+  require(std::isfinite(f.dt_s) && f.dt_s > 0.0, "--dt-s", f.dt_s, "must be > 0");
+  const double n_steps = std::round(f.duration_s / f.dt_s);
+  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, "--duration-s", f.duration_s,
+          fmt::format("must be between 1 and {} time steps of --dt-s", kMaxTimeSteps));
+  require(f.alpha >= -0.5 && f.alpha <= 0.0, "--alpha", f.alpha, "must be in [-0.5, 0]");
+  require(f.rho_inf >= 0.0 && f.rho_inf <= 1.0, "--rho-inf", f.rho_inf, "must be in [0, 1]");
+  require_count(f.output_every, "--output-every", 1, kMaxTimeSteps);
+  if (f.steps != 0) require_count(f.steps, "--steps", 1, kMaxSteps);
+  require_count(f.max_iterations, "--max-iterations", 1, 1000);
+  xc::DynamicSettings s;
+  s.duration_s = f.duration_s;
+  s.dt_s = f.dt_s;
+  s.output_dt_s = f.output_every * f.dt_s;
+  s.release_tip_load = f.release_tip_load;
+  s.steps = f.steps;
+  s.alpha = f.alpha;
+  s.rho_inf = f.rho_inf;
+  s.max_iterations = f.max_iterations;
+  // Refused before the shooting run spends its time.
+  const std::string unsupported = xc::fe_dynamics_unsupported(model);
+  if (!unsupported.empty()) throw DomainError(unsupported);
+  progress(model.name + ": shooting dynamics");
+  xc::DynamicRun shooting;
+  try {
+    shooting = xc::run_dynamics(model, xc::DynamicMethod::kShooting, s);
+  } catch (const InputError& e) {
+    if (e.key() == "dynamics.steps") throw InputError("--steps", e.value(), e.rule());
+    throw;
+  }
+  std::vector<xc::DynamicRun> fe;
+  std::vector<std::string> labels;
+  for (const int order : orders) {
+    for (const int n : elements) {
+      s.order = order;
+      s.elements = n;
+      progress(fmt::format("{}: FE dynamics, order {}, {} elements", model.name, order, n));
+      fe.push_back(xc::run_dynamics(model, xc::DynamicMethod::kFe, s));
+      labels.push_back(fmt::format("fe_p{}_n{}", order, n));
+    }
+  }
+  Output out(out_path);
+  out.stream() << xc::dynamic_csv(shooting, fe, labels);
+  out.commit();
+  fmt::print(stderr, "{}: {} s at dt {} s ({} steps); shooting: {} RK4 steps along s, {:.3f} s{}\n",
+             model.name, f.duration_s, f.dt_s, static_cast<long long>(n_steps), shooting.grid_steps,
+             shooting.wall_s, shooting.ok ? "" : "; FAILED: " + shooting.message);
+  fmt::print(stderr, "  {:>5} {:>8} {:>14} {:>11} {:>9} {:>8}\n", "order", "elements",
+             "max |dtip| [m]", "/ L", "at t [s]", "fe [s]");
+  bool all = shooting.ok;
+  std::size_t k = 0;
+  for (const int order : orders) {
+    for (const int n : elements) {
+      const xc::DynamicRun& r = fe[k++];
+      const xc::TrajectoryDifference d = xc::trajectory_difference(r, shooting);
+      fmt::print(stderr, "  {:>5} {:>8} {:>14.4e} {:>11.3e} {:>9.4f} {:>8.3f}{}\n", order, n,
+                 d.max_m, d.max_m / model.length_m, d.at_t_s, r.wall_s,
+                 r.ok ? "" : "  FAILED: " + r.message);
+      all = all && r.ok;
+    }
+  }
+  if (!all) {
+    fmt::print(stderr,
+               "tcasim compare --dynamic: a run failed (the CSV holds the times before it)\n");
+    throw CLI::RuntimeError(kExitNotConverged);
+  }
+}
+
 }  // namespace
 
 void add_compare_command(CLI::App& app) {
@@ -75,22 +162,73 @@ void add_compare_command(CLI::App& app) {
     std::string scenario, elements = "16,32,64,128", orders = "2,1", out;
     xc::ReferenceSettings reference;
     bool default_tolerances = false;
+    bool dynamic = false;
+    DynamicFlags dyn;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("compare",
                                  "Cross-check: FE at increasing refinement against the shooting "
-                                 "solution (tip, rotation, tension)");
+                                 "solution (tip, rotation, tension); --dynamic: the two dynamics "
+                                 "methods over time (max tip difference)");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  cmd->add_option("--elements", flags->elements,
-                  "FE element counts, comma-separated (default 16,32,64,128)");
-  cmd->add_option("--orders", flags->orders, "FE orders, comma-separated (default 2,1)");
-  cmd->add_option("--reference-steps", flags->reference.steps,
-                  "RK4 steps of the shooting reference (default 2048)");
-  cmd->add_flag(
+  auto* elements_flag = cmd->add_option(
+      "--elements", flags->elements,
+      "FE element counts, comma-separated (default 16,32,64,128; --dynamic: 32)");
+  auto* orders_flag = cmd->add_option("--orders", flags->orders,
+                                      "FE orders, comma-separated (default 2,1; --dynamic: 2)");
+  auto* reference_flag = cmd->add_option("--reference-steps", flags->reference.steps,
+                                         "RK4 steps of the shooting reference (default 2048)");
+  auto* tolerances_flag = cmd->add_flag(
       "--default-tolerances", flags->default_tolerances,
       "FE Newton at beam_fe's default tolerances (default: tightened, as the validation)");
+  cmd->add_flag("--dynamic", flags->dynamic,
+                "compare the dynamics (tcasim simulate's two methods) from the static state at "
+                "t = 0: per-time CSV, max tip difference over time on stderr");
+  DynamicFlags& d = flags->dyn;
+  const std::vector<CLI::Option*> dynamic_flags = {
+      cmd->add_option("--duration-s", d.duration_s, "--dynamic: simulated time T [s] (> 0)"),
+      cmd->add_option("--dt-s", d.dt_s, "--dynamic: time step of both methods [s] (> 0)"),
+      cmd->add_option("--steps", d.steps,
+                      "--dynamic: shooting RK4 steps along s (default: enough for the time step)"),
+      cmd->add_option("--alpha", d.alpha,
+                      "--dynamic: shooting BDF-alpha parameter in [-0.5, 0] (default -0.2)"),
+      cmd->add_option("--rho-inf", d.rho_inf,
+                      "--dynamic: FE generalized-alpha spectral radius in [0, 1] (default 0.9)"),
+      cmd->add_option("--output-every", d.output_every,
+                      "--dynamic: write every K-th time step (default 1)"),
+      cmd->add_option("--max-iterations", d.max_iterations,
+                      "--dynamic: Newton iterations per time step (default 30)"),
+      cmd->add_flag("--release-tip-load", d.release_tip_load,
+                    "--dynamic: the scenario's tip load acts at t = 0 only (a released "
+                    "cantilever)")};
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
-  cmd->callback([flags] {
+  cmd->callback([=] {
+    // A flag of the other mode is refused, not ignored.
+    for (const CLI::Option* o : dynamic_flags) {
+      if (o->count() > 0 && !flags->dynamic) {
+        throw InputError(o->get_name(), o->as<std::string>(), "applies to --dynamic only");
+      }
+    }
+    for (const CLI::Option* o : {reference_flag, tolerances_flag}) {
+      if (o->count() > 0 && flags->dynamic) {
+        throw InputError(o->get_name(), o->as<std::string>(),
+                         "applies to the static comparison only (without --dynamic)");
+      }
+    }
+    if (flags->dynamic) {
+      for (const CLI::Option* o : {dynamic_flags[0], dynamic_flags[1]}) {
+        if (o->count() == 0) {
+          throw InputError(o->get_name(), "(missing)", "is required with --dynamic");
+        }
+      }
+      const std::vector<int> elements = parse_counts(
+          elements_flag->count() > 0 ? flags->elements : "32", "--elements", kMaxElements);
+      const std::vector<int> orders =
+          parse_counts(orders_flag->count() > 0 ? flags->orders : "2", "--orders", 2);
+      const rod::RodModel model = load_supported(flags->scenario);
+      compare_dynamic(model, flags->dyn, elements, orders, flags->out);
+      return;
+    }
     require_reference_steps(flags->reference.steps);
     const rod::RodModel model = load_supported(flags->scenario);
     const std::vector<int> elements = parse_counts(flags->elements, "--elements", kMaxElements);

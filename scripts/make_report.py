@@ -9,7 +9,8 @@ Reads what scripts/validate.sh and the validation programs wrote into OUT_DIR:
   <program>/gates.csv  program,gate,measured,bound,passed   (validation/common/gates.hpp)
   <program>/log.txt, <program>/*.png and a few known tables (fig5_table.csv,
   fig6_radius.csv, table1_grasp.csv, fig8_force.csv, crosscheck.csv, convergence.csv,
-  shapes_summary.csv, free_vibration.csv, dt_order.csv, quasi_static_order.csv) when present.
+  shapes_summary.csv, free_vibration.csv, dt_order.csv, quasi_static_order.csv,
+  dynamic_crosscheck_summary.csv, dynamic_dt_study.csv, dynamic_h_study.csv) when present.
 Without timing.csv every sub-folder holding a gates.csv is reported.
 
 The report reads the way a reviewer reads: the verdict first, then a dashboard of the
@@ -133,6 +134,13 @@ PLOT_DESCRIPTIONS = {
     "dynamics_orders.png": "Rod dynamics: errors against dt (frequencies, energy drift and balance, forced "
                            "trajectory) and the quasi-static gaps (tip-force ramp, heating ramp, PWM drive) "
                            "against the drive rate, with observed orders",
+    "dynamic_crosscheck_trajectories.png": "Dynamic cross-check: tip trajectories of the shooting and FE dynamics "
+                                           "at the finest dt per case, and their distance over time",
+    "dynamic_crosscheck_dt.png": "Dynamic cross-check: max-over-time difference of the two methods against dt per "
+                                 "case, with each method's own time error",
+    "dynamic_crosscheck_h.png": "Dynamic cross-check: time-extrapolated difference against the FE element size, "
+                                "linear and quadratic elements",
+    "dynamic_crosscheck_energy.png": "Dynamic cross-check: kinetic and potential energies of both methods over time",
 }
 
 
@@ -333,6 +341,11 @@ KNOWN_TABLES = [
     ("heated_ramp_order.csv", "Rod dynamics: heated manipulator, gap to the static solution against the ramp rate"),
     ("pwm_quasi_static_order.csv", "Rod dynamics: PWM-driven three-TCA rod, gap to the quasi-static tip against "
      "the drive rate"),
+    ("dynamic_crosscheck_summary.csv", "Dynamic cross-check: finest settings per case (pending: not run yet)"),
+    ("dynamic_dt_study.csv", "Dynamic cross-check: difference and own time errors against dt",
+     ["case", "dt_s", "shooting_steps", "fe_elements", "difference_over_L", "at_t_s", "shooting_time_error_over_L",
+      "fe_time_error_over_L", "shooting_wall_s", "fe_wall_s"]),
+    ("dynamic_h_study.csv", "Dynamic cross-check: difference against the FE element size (extrapolated in dt)"),
     ("shapes_summary.csv", "Suite scenarios: tip, global equilibrium (relative imbalance), timing",
      ["scenario", "status", "iterations", "tip_x_m", "tip_y_m", "tip_z_m", "bending_radius_m", "load_scale_N",
       "force_imbalance_rel", "moment_imbalance_rel", "imbalance_8_steps", "imbalance_16_steps", "wall_time_s",
@@ -524,6 +537,27 @@ def card_dynamics(out_dir):
             (["tip mass ratio", "mode", "dt [s]", "vs EB", "vs Timoshenko + scheme"], table), "validate_dynamics")
 
 
+def card_dynamic_crosscheck(out_dir):
+    rows = read_csv(out_dir / "validate_dynamic_crosscheck" / "dynamic_crosscheck_summary.csv")
+    if not rows:
+        return None
+    table, worst = [], None
+    for r in rows:
+        if r.get("status") != "run":
+            table.append([r.get("case", "?"), f"pending: {r.get('reason', '')}", "", ""])
+            continue
+        d, x = number(r.get("difference_over_L")), number(r.get("extrapolated_difference_over_L"))
+        table.append([r.get("case", "?"), r.get("finest_dt_s", ""), f"{d:.1e}" if d is not None else "-",
+                      f"{x:.1e}" if x is not None else "-"])
+        if r.get("bound_over_L") and d is not None and (worst is None or d > worst[0]):
+            worst = (d, r.get("case", "?"))
+    return ("Dynamic cross-check: shooting vs FE over time",
+            f"worst {worst[0]:.1e} L ({worst[1]})" if worst else "-",
+            ["max over time of the tip distance at the finest dt; extrapolated: both runs Richardson-extrapolated "
+             "in dt (spatial + model difference)"],
+            (["case", "finest dt [s]", "difference / L", "extrapolated / L"], table), "validate_dynamic_crosscheck")
+
+
 def card_speed(out_dir, timing, run):
     table = []
     shapes = read_csv(out_dir / "validate_shapes" / "shapes_summary.csv")
@@ -554,7 +588,8 @@ def card_speed(out_dir, timing, run):
 
 def dashboard_cards(out_dir, timing, run):
     cards, errors = [], []
-    for make in (card_table1, card_fig5, card_fig6, card_fig8, card_crosscheck, card_orders, card_dynamics):
+    for make in (card_table1, card_fig5, card_fig6, card_fig8, card_crosscheck, card_orders, card_dynamics,
+                 card_dynamic_crosscheck):
         try:
             c = make(out_dir)
         except (KeyError, ValueError, TypeError, ZeroDivisionError, statistics.StatisticsError) as e:

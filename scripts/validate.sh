@@ -35,6 +35,7 @@ programs=(
   "validate_crosscheck|plot_crosscheck.py|"
   "validate_convergence|plot_convergence.py|"
   "validate_dynamics|plot_dynamics.py|"
+  "validate_dynamic_crosscheck|plot_dynamic_crosscheck.py|"
 )
 echo "[validate] 3/5 validation programs -> $out"
 failed=()

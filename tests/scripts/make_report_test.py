@@ -139,6 +139,23 @@ class MakeReportTest(unittest.TestCase):
         self.assertEqual(table[1], [["m, f12 paper", "66.8", "72.0"],
                                     ["m, f12 castigliano, expansion_scale=0.05", "5.2", "2.5"]])
 
+    def test_the_dynamic_crosscheck_card_takes_the_worst_gated_case_and_lists_pending_ones(self):
+        d = self.out / "validate_dynamic_crosscheck"
+        d.mkdir()
+        (d / "dynamic_crosscheck_summary.csv").write_text(
+            "case,status,reason,finest_dt_s,shooting_steps,fe_elements,difference_over_L,"
+            "extrapolated_difference_over_L,bound_over_L\n"
+            "pulse,run,,1.25e-04,48,32,7.7e-07,2.5e-08,1e-06\n"
+            "release,run,,1.25e-04,40,32,9.1e-05,4.0e-05,\n"
+            "tendon,run,,3.125e-05,80,64,3.3e-07,1.0e-07,1e-06\n"
+            "tca,pending,\"TCA drives in the FE dynamics\",,,,,,\n")
+        title, headline, _, table, anchor = make_report.card_dynamic_crosscheck(self.out)
+        self.assertEqual(anchor, "validate_dynamic_crosscheck")
+        # The released case has no agreement bound: the headline is the worst bounded case.
+        self.assertEqual(headline, "worst 7.7e-07 L (pulse)")
+        self.assertEqual(table[1][1], ["release", "1.25e-04", "9.1e-05", "4.0e-05"])
+        self.assertEqual(table[1][3], ["tca", "pending: TCA drives in the FE dynamics", "", ""])
+
 
 if __name__ == "__main__":
     unittest.main()
