@@ -13,10 +13,7 @@ using namespace dynamics_names;
 DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   DynamicsSummary sum;
   const int n = unknowns();
-  Eigen::VectorXd unknown_scale(n);
-  unknown_scale.head<6>() = scale.segment<6>(kN);
-  for (int j = 0; j < n_tca; ++j) unknown_scale[6 + j] = scale[kT + j];
-  for (int k = 1; k < M; ++k) unknown_scale.segment(n0() + (k - 1) * D, D) = scale;
+  const Eigen::VectorXd unknown_scale = unknown_scales();
   Eigen::VectorXd r(n), z_old = zz, dz = Eigen::VectorXd::Zero(n);
   double rn_old = HUGE_VAL, lambda = 1.0;
   bool need_fresh = !lu_valid || lu_c0 != c0_active;
