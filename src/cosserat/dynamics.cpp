@@ -260,6 +260,37 @@ void RodDynamics::Impl::set_scales() {
   if (n_act > 0) scale.segment(kDelta, n_act).setConstant(L);
   if (n_tca > 0) scale.segment(kT, n_tca).setConstant(F_c);
 }
+Eigen::VectorXd RodDynamics::Impl::predict(int p) const {
+  // Newton's backward-difference extrapolation: z(n+1) ~ sum_{j=0..p} (-1)^j C(p+1, j+1) z(n-j).
+  Eigen::VectorXd out = z;
+  double c = 1.0;
+  for (int j = 0; j <= p; ++j) {
+    c = c * (p + 1 - j) / (j + 1);  // C(p+1, j+1)
+    const Eigen::VectorXd& zj = j == 0 ? z : z_past[j - 1];
+    if (j == 0) {
+      out = c * zj;
+    } else {
+      out += (j % 2 ? -c : c) * zj;
+    }
+  }
+  return out;
+}
+
+int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) const {
+  const Eigen::ArrayXd inv_scale = unknown_scale().array().inverse();
+  int best = 0;
+  double best_error = HUGE_VAL;
+  const int p_max = std::min(kMaxPredictorOrder, history_steps);
+  for (int p = 0; p <= p_max; ++p) {
+    const double e = ((predict(p) - z_new).array() * inv_scale).abs().maxCoeff();
+    if (e < best_error) {
+      best_error = e;
+      best = p;
+    }
+  }
+  return best;
+}
+
 RodDynamics::RodDynamics(const rod::RodModel& model, const DynamicsOptions& options)
     : impl_(std::make_unique<Impl>(model, options)) {}
 RodDynamics::~RodDynamics() = default;
@@ -324,8 +355,8 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) return sum;
   d.z = zz;
-  d.z_prev = zz;
-  d.z_prev2 = zz;
+  d.z_past.clear();
+  d.predictor_order = 0;
   d.cur = d.trial;
   d.prev = d.trial;
   for (auto& r : d.cur_t) r = PointRates{};
@@ -375,13 +406,11 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     hh.w = d.c1 * a.w + d.c2 * b.w + d.d1 * at.w;
     d.trial[i] = a;
   }
-  // Warm start: the unknowns extrapolated from the last steps (quadratic through three).
-  Eigen::VectorXd zz = d.z;
-  if (d.history_steps >= 2) {
-    zz = 3.0 * d.z - 3.0 * d.z_prev + d.z_prev2;
-  } else if (d.history_steps == 1) {
-    zz = 2.0 * d.z - d.z_prev;
-  }
+  // Warm start: the unknowns extrapolated from the last steps, by the polynomial whose order
+  // would have predicted the last step best (quadratic on the first steps).
+  const int order =
+      std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
+  Eigen::VectorXd zz = d.predict(order);
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) {
     if (d.history_steps > 0) {
@@ -414,8 +443,10 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     d.cur[i] = x;
     d.cur_t[i] = rt;
   }
-  d.z_prev2 = d.z_prev;
-  d.z_prev = d.z;
+  d.predictor_order = d.best_predictor_order(zz);
+  if (static_cast<int>(d.z_past.size()) < kMaxPredictorOrder) d.z_past.emplace_back();
+  for (std::size_t j = d.z_past.size() - 1; j > 0; --j) d.z_past[j].swap(d.z_past[j - 1]);
+  d.z_past[0].swap(d.z);
   d.z = zz;
   ++d.history_steps;
   d.grid_converged = d.grid;
