@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "common/units.hpp"
@@ -688,14 +689,19 @@ namespace tcasim::rod {
 namespace {
 
 // The project's own files must satisfy the reader (scenario files under
-// validation/scenarios/, materials under data/materials/).
+// validation/scenarios/ and its dynamic suite validation/scenarios/dynamic/, materials under
+// data/materials/).
 TEST(ShippedFiles, ValidationScenariosAndMaterialsParse) {
   const std::filesystem::path dir =
       std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios";
   int parsed = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".json") continue;
-    const std::string path = entry.path().string();
+  std::vector<std::filesystem::path> files;
+  for (const auto& d : {dir, dir / "dynamic"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(d)) files.push_back(entry.path());
+  }
+  for (const auto& file : files) {
+    if (file.extension() != ".json") continue;
+    const std::string path = file.string();
     try {
       const json doc = json::parse(std::ifstream(path));
       if (doc.contains("schema") && doc.at("schema") == "tcasim.tcas/1") {
