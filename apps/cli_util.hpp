@@ -32,6 +32,13 @@ inline constexpr int kMaxJobs = 1024;
 /// Shards of `tcasim sweep --shard I/N`: a sweep has at most a million points (common/grid.hpp).
 inline constexpr long long kMaxShards = 1000000;
 
+/// Time steps of one simulation: more than this many is a typo, not a study.
+inline constexpr long long kMaxTimeSteps = 100000000;
+
+/// Checks `--duration-s`, `--dt-s` (both > 0, 1 .. kMaxTimeSteps steps) and `--alpha` (in
+/// [-0.5, 0]) of `tcasim simulate` and `compare --dynamic`; returns round(duration / dt).
+long long require_time_flags(double duration_s, double dt_s, double alpha);
+
 /// Requires lo <= value <= hi for the count given by `flag` (`--steps = 1e9 must be ...`).
 void require_count(long long value, const std::string& flag, long long lo, long long hi);
 

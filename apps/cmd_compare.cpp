@@ -79,20 +79,13 @@ struct DynamicFlags {
 };
 
 /// Time steps of one run: as `tcasim simulate` (1e8 steps are hours).
-constexpr long long kMaxTimeSteps = 100000000;
 
 /// `tcasim compare --dynamic`: one shooting run against the FE on each mesh; the per-time CSV
 /// to `out` (stdout when empty), the summary (max tip difference over time) to stderr.
 void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
                      const std::vector<int>& elements, const std::vector<int>& orders,
                      const std::string& out_path) {
-  require(std::isfinite(f.duration_s) && f.duration_s > 0.0, "--duration-s", f.duration_s,
-          "must be > 0");
-  require(std::isfinite(f.dt_s) && f.dt_s > 0.0, "--dt-s", f.dt_s, "must be > 0");
-  const double n_steps = std::round(f.duration_s / f.dt_s);
-  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, "--duration-s", f.duration_s,
-          fmt::format("must be between 1 and {} time steps of --dt-s", kMaxTimeSteps));
-  require(f.alpha >= -0.5 && f.alpha <= 0.0, "--alpha", f.alpha, "must be in [-0.5, 0]");
+  const long long n_steps = require_time_flags(f.duration_s, f.dt_s, f.alpha);
   require(f.rho_inf >= 0.0 && f.rho_inf <= 1.0, "--rho-inf", f.rho_inf, "must be in [0, 1]");
   require_count(f.output_every, "--output-every", 1, kMaxTimeSteps);
   if (f.steps != 0) require_count(f.steps, "--steps", 1, kMaxSteps);
@@ -132,7 +125,7 @@ void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
   out.stream() << xc::dynamic_csv(shooting, fe, labels);
   out.commit();
   fmt::print(stderr, "{}: {} s at dt {} s ({} steps); shooting: {} RK4 steps along s, {:.3f} s{}\n",
-             model.name, f.duration_s, f.dt_s, static_cast<long long>(n_steps), shooting.grid_steps,
+             model.name, f.duration_s, f.dt_s, n_steps, shooting.grid_steps,
              shooting.wall_s, shooting.ok ? "" : "; FAILED: " + shooting.message);
   fmt::print(stderr, "  {:>5} {:>8} {:>14} {:>11} {:>9} {:>8}\n", "order", "elements",
              "max |dtip| [m]", "/ L", "at t [s]", "fe [s]");

@@ -30,7 +30,6 @@ namespace {
 /// Exit code of a simulation whose time step failed (the rows before it are kept).
 constexpr int kExitStepFailed = 4;
 /// Time steps of one run: 1e8 steps are hours; beyond that the run only burns time.
-constexpr long long kMaxTimeSteps = 100000000;
 
 /// One .vtp of the current state and its entry in the .pvd collection.
 void write_vtk_frame(const rod::RodModel& model, const cosserat::RodDynamics& dyn,
@@ -173,13 +172,7 @@ void add_simulate_command(CLI::App& app) {
                                    "--rho-inf)");
       }
     }
-    require(std::isfinite(f.duration_s) && f.duration_s > 0.0, "--duration-s", f.duration_s,
-            "must be > 0");
-    require(std::isfinite(f.dt_s) && f.dt_s > 0.0, "--dt-s", f.dt_s, "must be > 0");
-    const double n_steps_real = std::round(f.duration_s / f.dt_s);
-    require(n_steps_real >= 1 && n_steps_real <= kMaxTimeSteps, "--duration-s", f.duration_s,
-            fmt::format("must be between 1 and {} time steps of --dt-s", kMaxTimeSteps));
-    require(f.alpha >= -0.5 && f.alpha <= 0.0, "--alpha", f.alpha, "must be in [-0.5, 0]");
+    const long long n_steps_real = require_time_flags(f.duration_s, f.dt_s, f.alpha);
     require_count(f.output_every, "--output-every", 1, kMaxTimeSteps);
     if (f.steps != 0) require_count(f.steps, "--steps", 1, kMaxSteps);
     require(std::isfinite(f.viscosity) && f.viscosity >= 0.0, "--viscosity-Pa-s", f.viscosity,
@@ -210,7 +203,7 @@ void add_simulate_command(CLI::App& app) {
       // The flag overrides the scenario's viscosity (a constant or a profile along s).
       if (viscosity_flag->count() > 0) fo.viscosity_Pa_s = f.viscosity;
       fo.tip_mass_kg = tip_mass_flag->count() > 0 ? f.tip_mass : model.tip_mass_kg;
-      run_fe(model, fo, loads_at, static_cast<long long>(n_steps_real), f.output_every, f.out,
+      run_fe(model, fo, loads_at, n_steps_real, f.output_every, f.out,
              f.vtk_dir);
       return;
     }
@@ -254,7 +247,7 @@ void add_simulate_command(CLI::App& app) {
     }
     write_row();
     if (!f.vtk_dir.empty()) write_vtk_frame(model, dyn, f.vtk_dir, frame++, pvd);
-    const long long n_steps = static_cast<long long>(n_steps_real);
+    const long long n_steps = n_steps_real;
     ProgressReporter progress(stderr, "tcasim simulate", static_cast<std::size_t>(n_steps),
                               "steps");
     for (long long k = 1; k <= n_steps; ++k) {
