@@ -26,7 +26,7 @@
 //      an elongation is the offset times the bending it follows), and largest string tension
 //      difference <= k_max 1e-9 r_max (k_max: the stiffest TCA's dF/d delta at the reference;
 //      0 for prescribed tensions, which both solvers must reproduce exactly);
-//   and for the suite: every scenario found runs (at least the 16 shipped ones); one that a
+//   and for the suite: every scenario found runs (at least the 17 shipped ones); one that a
 //   solver does not support is reported "not run" and fails.
 // Usage
 //   validate_crosscheck --out-dir out/crosscheck           (full)
