@@ -81,13 +81,18 @@ double position_difference(const xc::CrossCheckRow& r) {
   return std::fmax(r.diff.tip_m, r.diff.mid_m);
 }
 
-/// Largest distance of a string from the centerline, r_max [m] (straight offset or helix radius).
+/// Largest distance of a string from the centerline, r_max [m] (straight offset, helix radius,
+/// or a spline's largest listed offset).
 double max_string_offset_m(const tcasim::rod::RodModel& model) {
+  using Type = tcasim::rod::Routing::Type;
   double r = 0.0;
   for (const auto& a : model.actuators) {
-    r = std::max(r, a.routing.type == tcasim::rod::Routing::Type::kHelix
-                        ? std::abs(a.routing.radius_m)
-                        : a.routing.offset_m.norm());
+    if (a.routing.type == Type::kSpline) {
+      for (const Eigen::Vector2d& p : a.routing.knot_offsets_m) r = std::max(r, p.norm());
+      continue;
+    }
+    r = std::max(r, a.routing.type == Type::kHelix ? std::abs(a.routing.radius_m)
+                                                   : a.routing.offset_m.norm());
   }
   return r;
 }
