@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cosserat/shooting.hpp"
+#include "jacobian_check.hpp"
 #include "models.hpp"
 #include "rod/reference_path.hpp"
 #include "rod/scenario.hpp"
@@ -102,16 +103,7 @@ rod::RodModel anchored_rod() {
 TEST(ShootingAnchoredString, SensitivityJacobianThroughAnchorJumpsMatchesCentralDifferences) {
   const rod::RodModel m = anchored_rod();
   ASSERT_EQ(m.anchor_points(), (std::vector<double>{0.02, 0.04, 0.05, 0.07}));
-  Eigen::VectorXd x(7);
-  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;
-  Options o = rk4(40);
-  ShootingSolver sens(m, o);
-  o.jacobian = JacobianMethod::kCentralDifference;
-  ShootingSolver cen(m, o);
-  Eigen::MatrixXd Js, Jc;
-  ASSERT_TRUE(sens.jacobian(Actuation::from_model(m), x, Js));
-  ASSERT_TRUE(cen.jacobian(Actuation::from_model(m), x, Jc));
-  const double worst = test_support::worst_column_relative_difference(Js, Jc);
+  const double worst = testing::sensitivity_vs_central_difference(m, rk4(40));
   std::printf("[jacobian] anchored strings, sensitivity vs central differences: %.2e\n", worst);
   EXPECT_LE(worst, 1e-7);
 }
@@ -141,16 +133,7 @@ rod::RodModel spline_rod() {
 TEST(ShootingAnchoredString, SensitivityJacobianThroughSplineKinksMatchesCentralDifferences) {
   const rod::RodModel m = spline_rod();
   ASSERT_EQ(m.routing_kinks(), (std::vector<double>{0.03, 0.05}));
-  Eigen::VectorXd x(7);
-  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;
-  Options o = rk4(40);
-  ShootingSolver sens(m, o);
-  o.jacobian = JacobianMethod::kCentralDifference;
-  ShootingSolver cen(m, o);
-  Eigen::MatrixXd Js, Jc;
-  ASSERT_TRUE(sens.jacobian(Actuation::from_model(m), x, Js));
-  ASSERT_TRUE(cen.jacobian(Actuation::from_model(m), x, Jc));
-  const double worst = test_support::worst_column_relative_difference(Js, Jc);
+  const double worst = testing::sensitivity_vs_central_difference(m, rk4(40));
   std::printf("[jacobian] spline strings, sensitivity vs central differences: %.2e\n", worst);
   EXPECT_LE(worst, 1e-7);  // as for the anchors above (central differences' own error)
   // The solve converges and balances globally (the kinks' point forces included): the
