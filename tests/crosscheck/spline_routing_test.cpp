@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "common/error.hpp"
 #include "common/units.hpp"
+#include "cosserat/dynamics.hpp"
 #include "crosscheck/crosscheck.hpp"
 #include "rod/reference_path.hpp"
 #include "rod/scenario.hpp"
@@ -241,6 +243,22 @@ TEST(SplineRouting, SpanDefaultsToTheKnotsAndTheCubicThroughTwoPointsIsTheLine) 
   EXPECT_EQ(ro.ddr(0.05).norm(), 0.0);
   // Rest length: the straight segment's length.
   EXPECT_NEAR(m.actuators[0].rest_length_m, std::hypot(0.06, 0.002), 1e-15);
+}
+
+TEST(SplineRouting, ShootingDynamicsRefusesASplineRoutingByName) {
+  json j = body();
+  j["actuators"].push_back({{"name", "wavy"},
+                            {"routing", spline({0.0, kL}, {Eigen::Vector2d(0.001, 0.0),
+                                                            Eigen::Vector2d(0.002, 0.0)})},
+                            {"drive", tension(1.0)}});
+  const rod::RodModel m = rod::parse_scenario(j);
+  try {
+    cosserat::RodDynamics d(m, cosserat::DynamicsOptions{});
+    ADD_FAILURE() << "no DomainError";
+  } catch (const DomainError& e) {
+    EXPECT_NE(std::string(e.what()).find("'wavy' has a spline routing"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
