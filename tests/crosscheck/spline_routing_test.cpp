@@ -223,6 +223,12 @@ TEST(SplineRouting, BadSplineInputIsRejectedNamingKeyAndRule) {
   json bad = spline({0.0, kL}, {a, b});
   bad["interpolation"] = "quadratic";
   expect_error(bad, r + ".interpolation", "must be one of");
+  bad = spline({0.0, kL}, {a, b});
+  bad["offset_m"][1] = {0.001, 0.0, 0.0};
+  expect_error(bad, r + ".offset_m[1]", "2 numbers");
+  bad = spline({0.0, kL}, {a, b});
+  bad["radius_m"] = 0.001;
+  expect_error(bad, r + ".radius_m", "");
   expect_error(spline({0.02, 0.08}, {a, b}), "actuators[0].span_m", "inside the spline",
                json::array({0.01, 0.08}));
   // A kink on a precurved body where the string folds back (e3 . q* <= 0 on one side).
