@@ -251,6 +251,48 @@ TEST(SplineRouting, SpanDefaultsToTheKnotsAndTheCubicThroughTwoPointsIsTheLine) 
   EXPECT_NEAR(m.actuators[0].rest_length_m, std::hypot(0.06, 0.002), 1e-15);
 }
 
+/// Central differences with step 1e-6 m: truncation h^2 r'''/6 ~ 2e-11 (r''' ~ 1e2 1/m^2),
+/// round-off eps |r| / h ~ 2e-13 for r'; for r'' (the cubic's r'''' = 0) round-off
+/// eps |r'| / h ~ 1e-11 and the jump of r''' only at the points, away from the samples.
+constexpr double kFdStep = 1e-6, kFdTolerance1 = 1e-9, kFdTolerance2 = 1e-8;
+
+TEST(SplineRouting, DerivativesMatchCentralDifferencesAndTheCubicIsC2AtItsPoints) {
+  for (const char* interpolation : {"cubic", "linear"}) {
+    SCOPED_TRACE(interpolation);
+    const rod::RodModel m = rod::parse_scenario(with_routing(
+        spline({0.0, 0.02, 0.05, 0.07, kL},
+               {Eigen::Vector2d(-0.002, 0.0), Eigen::Vector2d(-0.001, 0.002),
+                Eigen::Vector2d(0.0, 0.003), Eigen::Vector2d(0.001, 0.002),
+                Eigen::Vector2d(0.0, -0.002)},
+               interpolation)));
+    const rod::Routing& ro = m.actuators[0].routing;
+    for (const double s : {0.004, 0.031, 0.066, 0.093}) {  // inside pieces
+      const Eigen::Vector3d fd1 = (ro.r(s + kFdStep) - ro.r(s - kFdStep)) / (2.0 * kFdStep);
+      const Eigen::Vector3d fd2 = (ro.dr(s + kFdStep) - ro.dr(s - kFdStep)) / (2.0 * kFdStep);
+      EXPECT_LT((ro.dr(s) - fd1).norm(), kFdTolerance1) << s;
+      EXPECT_LT((ro.ddr(s) - fd2).norm(), kFdTolerance2) << s;
+    }
+    for (std::size_t j = 0; j < ro.knot_s_m.size(); ++j) {
+      const double s = ro.knot_s_m[j];
+      using rod::Side;
+      EXPECT_NEAR((ro.r(s, Side::kLeft) - ro.r(s, Side::kRight)).norm(), 0.0, 1e-18);
+      EXPECT_NEAR(ro.r(s).x(), m.actuators[0].routing.knot_offsets_m[j].x(), 1e-18);
+      const double jump = (ro.dr(s, Side::kLeft) - ro.dr(s, Side::kRight)).norm();
+      const bool interior = j > 0 && j + 1 < ro.knot_s_m.size();
+      if (ro.linear && interior) {
+        EXPECT_GT(jump, 1e-2) << s;  // a kink
+      } else {
+        EXPECT_LT(jump, 1e-13) << s;
+        EXPECT_LT((ro.ddr(s, Side::kLeft) - ro.ddr(s, Side::kRight)).norm(), 1e-9) << s;
+      }
+    }
+    if (!ro.linear) {  // natural end conditions
+      EXPECT_LT(ro.ddr(0.0).norm(), 1e-12);
+      EXPECT_LT(ro.ddr(kL, rod::Side::kLeft).norm(), 1e-12);
+    }
+  }
+}
+
 TEST(SplineRouting, ShootingDynamicsRefusesASplineRoutingByName) {
   json j = body();
   j["actuators"].push_back({{"name", "wavy"},
