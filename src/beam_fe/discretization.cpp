@@ -164,11 +164,11 @@ State Discretization::reference_state() const {
   State st;
   const int nodes = node_count();
   const Eigen::Quaterniond q0(model.R_WB0);
-  if (!model.uniform_body() || model.has_inner_anchors()) {
-    // omega* varies (or the mesh is aligned to string anchors): the stress-free shape R' = R
-    // hat(omega*(s)), p' = R e3 by constant- curvature arcs at the midpoint curvature of kSubsteps
-    // substeps per node interval (second order; only the starting configuration and the constraint
-    // ramp's start use it).
+  if (!model.uniform_body() || !model.interior_knots().empty()) {
+    // omega* varies (or the mesh is aligned to string anchors or spline knots): the stress-free
+    // shape R' = R hat(omega*(s)), p' = R e3 by constant- curvature arcs at the midpoint
+    // curvature of kSubsteps substeps per node interval (second order; only the starting
+    // configuration and the constraint ramp's start use it).
     constexpr int kSubsteps = 64;
     Eigen::Quaterniond q = q0;
     Vector3d p = model.base_position_W_m;

@@ -393,7 +393,7 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   res.scenario = model.name;
   res.method = "fe";
   // The mesh's element count (a body that varies along s: aligned to its breakpoints).
-  const int elements = model.uniform_body() && !model.has_inner_anchors()
+  const int elements = model.uniform_body() && model.interior_knots().empty()
                            ? options.elements
                            : Discretization(model, options).element_count();
   res.discretization = {{"elements", elements}, {"order", options.order}};

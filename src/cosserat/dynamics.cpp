@@ -112,6 +112,11 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
                         "' is anchored inside the body (span_m); dynamics supports strings from "
                         "base to tip only so far");
     }
+    if (a.routing.type == rod::Routing::Type::kSpline) {
+      throw DomainError("rod dynamics: actuator '" + a.name +
+                        "' has a spline routing; dynamics supports straight and helix routings "
+                        "only so far");
+    }
     length_ratio.push_back(a.rest_length_m / model.length_m);
     count.push_back(static_cast<double>(a.count));
   }

@@ -66,9 +66,11 @@ void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) 
       dr.setZero();
       ddr.setZero();
     } else {
-      r = routing.r(s);
-      dr = routing.dr(s);
-      ddr = routing.ddr(s);
+      // Inside the current piece: at its ends, the piece's own side of a spline knot.
+      const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
+      r = routing.r(s, side);
+      dr = routing.dr(s, side);
+      ddr = routing.ddr(s, side);
     }
     // [Pawlowski2019] Eq. (19): q = nu + omega x r + r'.
     const Vec3 q = nu + omega.cross(r) + dr;
@@ -133,9 +135,10 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
       c.dr.setZero();
       ddr.setZero();
     } else {
-      c.r = routing.r(s);
-      c.dr = routing.dr(s);
-      ddr = routing.ddr(s);
+      const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
+      c.r = routing.r(s, side);
+      c.dr = routing.dr(s, side);
+      ddr = routing.ddr(s, side);
     }
     const Vec3 q = nu + omega.cross(c.r) + c.dr;
     c.q_norm = q.norm();
@@ -228,8 +231,11 @@ struct SectionWrench {
   std::vector<Vec6> u;  // per actuator: (qh_i, r_i x qh_i)
 };
 
-void section_wrench(const RodRhs& p, double s, std::size_t piece, const RodRhs::Local& k,
-                    const Vec3& e, const Vec3& omega, SectionWrench& out) {
+/// `side`: the side of the knot s the section lies on (the string tangents of a kinked
+/// spline routing differ: docs/conventions.md "Spline routings").
+void section_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece,
+                    const RodRhs::Local& k, const Vec3& e, const Vec3& omega,
+                    SectionWrench& out) {
   out.W.head<3>() = k.Kn.cwiseProduct(e);
   out.W.tail<3>() = k.Kw.cwiseProduct(omega - k.ws);
   out.M.setZero();
@@ -239,8 +245,8 @@ void section_wrench(const RodRhs& p, double s, std::size_t piece, const RodRhs::
   for (int i = 0; i < p.n_act; ++i) {
     if (!p.runs(piece, i)) continue;  // not crossing this side of the section: u_i = 0
     const rod::Routing& routing = p.model.actuators[i].routing;
-    const Vec3 r = routing.r(s);
-    const Vec3 q = nu + omega.cross(r) + routing.dr(s);
+    const Vec3 r = routing.r(s, side);
+    const Vec3 q = nu + omega.cross(r) + routing.dr(s, side);
     const double q_norm = q.norm();
     const Vec3 qh = q / q_norm;
     out.u[i] << qh, r.cross(qh);
@@ -264,7 +270,7 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   properties(s, rod::Side::kRight, right.Kn, right.Kw, right.ws, right.wf);
   const Vec3 e_l = Y.segment<3>(kNu), om_l = Y.segment<3>(kOmega);
   SectionWrench wl, wr;
-  section_wrench(*this, s, knot - 1, left, e_l, om_l, wl);
+  section_wrench(*this, s, rod::Side::kLeft, knot - 1, left, e_l, om_l, wl);
   // Start from the strains of the rod's own wrench (exact without loaded strings).
   Vec3 e = wl.W.head<3>().cwiseQuotient(right.Kn);
   Vec3 om = right.ws + wl.W.tail<3>().cwiseQuotient(right.Kw);
@@ -281,7 +287,7 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
     const double scale = wl.W.cwiseAbs().maxCoeff();
     bool converged = false;
     for (int it = 0; it < 30 && !converged; ++it) {
-      section_wrench(*this, s, knot, right, e, om, wr);
+      section_wrench(*this, s, rod::Side::kRight, knot, right, e, om, wr);
       const Vec6 F = wr.W - wl.W;
       const Vec6 dz = wr.M.partialPivLu().solve(F);
       if (!dz.allFinite()) return false;
@@ -296,7 +302,7 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   Y.segment<3>(kNu) = e;
   Y.segment<3>(kOmega) = om;
   if (directions == 0) return Y.head(dim).allFinite();
-  section_wrench(*this, s, knot, right, e, om, wr);
+  section_wrench(*this, s, rod::Side::kRight, knot, right, e, om, wr);
   const Eigen::PartialPivLU<Mat6> lu(wr.M);
   for (int j = 0; j < directions; ++j) {
     double* yj = Y.data() + dim * (j + 1);

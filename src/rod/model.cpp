@@ -171,23 +171,26 @@ double helix_angle(const Routing& r, double s_m) {
 }
 }  // namespace
 
-Eigen::Vector3d Routing::r(double s_m) const {
+Eigen::Vector3d Routing::r(double s_m, Side side) const {
   if (type == Type::kStraight) return {offset_m.x(), offset_m.y(), 0.0};
+  if (type == Type::kSpline) return spline_eval(s_m, side, 0);
   // r(s) = R (cos theta, sin theta, 0)
   const double theta = helix_angle(*this, s_m);
   return {radius_m * std::cos(theta), radius_m * std::sin(theta), 0.0};
 }
 
-Eigen::Vector3d Routing::dr(double s_m) const {
+Eigen::Vector3d Routing::dr(double s_m, Side side) const {
   if (type == Type::kStraight) return Eigen::Vector3d::Zero();
+  if (type == Type::kSpline) return spline_eval(s_m, side, 1);
   // r'(s) = R w (-sin theta, cos theta, 0), w = 2 pi k
   const double w = 2.0 * units::kPi * turns_per_m;
   const double theta = helix_angle(*this, s_m);
   return {-radius_m * w * std::sin(theta), radius_m * w * std::cos(theta), 0.0};
 }
 
-Eigen::Vector3d Routing::ddr(double s_m) const {
+Eigen::Vector3d Routing::ddr(double s_m, Side side) const {
   if (type == Type::kStraight) return Eigen::Vector3d::Zero();
+  if (type == Type::kSpline) return spline_eval(s_m, side, 2);
   // r''(s) = -R w^2 (cos theta, sin theta, 0)
   const double w = 2.0 * units::kPi * turns_per_m;
   const double theta = helix_angle(*this, s_m);

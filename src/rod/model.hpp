@@ -76,17 +76,38 @@ struct BodyMaterial {
 
 /// Path of a string in the body frame: r(s) = (x, y, 0) in the section plane.
 struct Routing {
-  enum class Type { kStraight, kHelix };
+  enum class Type { kStraight, kHelix, kSpline };
   Type type = Type::kStraight;
   Eigen::Vector2d offset_m = Eigen::Vector2d::Zero();  ///< straight: constant offset
   double radius_m = 0.0;                               ///< helix radius
   double phase_rad = 0.0;                              ///< helix phase at s = 0
   double turns_per_m = 0.0;                            ///< helix turns per metre of arc length s
+  /// Spline (docs/scenario-format.md "General routing and string extent"): the offsets
+  /// knot_offsets_m[j] at the knots knot_s_m[j] (strictly increasing, at least two), joined
+  /// by straight pieces (`linear`) or a C2 natural cubic spline per coordinate, whose second
+  /// derivatives at the knots are knot_curvatures (zero at both ends; all zero if linear).
+  std::vector<double> knot_s_m;
+  std::vector<Eigen::Vector2d> knot_offsets_m, knot_curvatures;
+  bool linear = false;
 
-  /// r_B(s), r_B'(s), r_B''(s) (derivatives with respect to the reference arc length s).
-  Eigen::Vector3d r(double s_m) const;
-  Eigen::Vector3d dr(double s_m) const;
-  Eigen::Vector3d ddr(double s_m) const;
+  /// Sets knot_curvatures from knot_s_m and knot_offsets_m (the natural spline's tridiagonal
+  /// system; zeros for `linear`). rod/spline_routing.cpp.
+  void build_spline();
+  /// Whether r' may jump at the spline knot knot_s_m[j] (a `linear` routing's interior knot).
+  bool kinked() const { return type == Type::kSpline && linear; }
+
+  /// r_B(s), r_B'(s), r_B''(s) (derivatives with respect to the reference arc length s). At a
+  /// spline knot `side` picks the piece (kRight: the one starting there); outside the knots
+  /// a spline continues its end pieces. Straight and helix ignore `side`.
+  Eigen::Vector3d r(double s_m, Side side = Side::kRight) const;
+  Eigen::Vector3d dr(double s_m, Side side = Side::kRight) const;
+  Eigen::Vector3d ddr(double s_m, Side side = Side::kRight) const;
+
+ private:
+  /// The spline piece index j (knot_s_m[j] <= s <= knot_s_m[j + 1]) holding s on `side`.
+  std::size_t spline_piece(double s_m, Side side) const;
+  /// Value (derivative 0), slope (1) or second derivative (2) of the spline at s.
+  Eigen::Vector3d spline_eval(double s_m, Side side, int derivative) const;
 };
 
 /// The electric drive of one TCA segment (docs/scenario-format.md "Electro-thermal TCAs").
@@ -214,9 +235,15 @@ struct RodModel {
   /// Every string anchor strictly inside (0, L) (rod/routing.cpp), sorted, without repeats:
   /// the points where a string's share of the section wrench starts or stops.
   std::vector<double> anchor_points() const;
-  /// breakpoints() and anchor_points() together, sorted, without repeats: where the FE mesh
-  /// puts a node and the shooting integrator a piece boundary.
+  /// breakpoints(), anchor_points() and routing_knots() together, sorted, without repeats:
+  /// where the FE mesh puts a node and the shooting integrator a piece boundary.
   std::vector<double> interior_knots() const;
+  /// Every interior knot of a spline routing strictly inside (0, L) (rod/routing.cpp), sorted,
+  /// without repeats: where r'' (cubic) or r' (linear) may change abruptly.
+  std::vector<double> routing_knots() const;
+  /// The routing knots where a `linear` spline string's direction may jump (a kink): the
+  /// string's point force on the body there.
+  std::vector<double> routing_kinks() const;
   /// True if any string is anchored inside the body.
   bool has_inner_anchors() const;
 };

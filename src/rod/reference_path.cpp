@@ -89,6 +89,13 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
 
 ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omega_B_1_m,
                              double s0_m, double s1_m) {
+  if (routing.type == Routing::Type::kSpline) {
+    // Piece by piece between the knots (the model version, with a constant omega*).
+    RodModel body;
+    body.reference_curvature_B_1_m = omega_B_1_m;
+    for (int c = 0; c < 3; ++c) body.reference_curvature_profile[c] = Profile(omega_B_1_m[c]);
+    return reference_path(routing, body, s0_m, s1_m);
+  }
   const double length_m = s1_m - s0_m;
   ReferencePath out;
   out.min_axial_s_m = s0_m;
@@ -143,12 +150,20 @@ ReferencePath reference_path(const Routing& routing, const RodModel& model) {
 ReferencePath reference_path(const Routing& routing, const RodModel& model, double s0_m,
                              double s1_m) {
   const auto& prof = model.reference_curvature_profile;
-  if (prof[0].is_constant() && prof[1].is_constant() && prof[2].is_constant()) {
+  const bool spline = routing.type == Routing::Type::kSpline;
+  if (!spline && prof[0].is_constant() && prof[1].is_constant() && prof[2].is_constant()) {
     return reference_path(routing, model.reference_curvature_B_1_m, s0_m, s1_m);
   }
+  // A spline is smooth between its knots (docs/scenario-format.md "General routing and string
+  // extent"): its knots are piece ends too, each piece evaluated on its own side of a kink.
   std::vector<double> knots{s0_m, s1_m};
   for (const Profile& p : prof) {
     for (double s : p.breakpoints()) {
+      if (s > s0_m && s < s1_m) knots.push_back(s);
+    }
+  }
+  if (spline) {
+    for (double s : routing.knot_s_m) {
       if (s > s0_m && s < s1_m) knots.push_back(s);
     }
   }
@@ -167,7 +182,8 @@ ReferencePath reference_path(const Routing& routing, const RodModel& model, doub
                              prof[2].value(s, side));
     };
     const auto q = [&](double s) -> Eigen::Vector3d {
-      return Eigen::Vector3d::UnitZ() + omega(s).cross(routing.r(s)) + routing.dr(s);
+      const Side side = s < mid ? Side::kRight : Side::kLeft;
+      return Eigen::Vector3d::UnitZ() + omega(s).cross(routing.r(s, side)) + routing.dr(s, side);
     };
     out.length_m += integrate([&](double s) { return q(s).norm(); }, a, b);
     const int samples = straight ? 1 : 256;

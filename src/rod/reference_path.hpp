@@ -37,7 +37,8 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
 /// when omega* is constant; else, on each piece between the breakpoints of omega*'s profiles,
 /// composite Gauss-Legendre quadrature refined to round-off, and the minimum of e3 . q* at
 /// the piece ends (exact for a straight string: it is linear in s there) and, for a helix, at
-/// 256 points per piece.
+/// 256 points per piece. A spline routing always takes this piecewise path, its knots being
+/// piece ends too (each piece evaluated on its own side of a kink).
 ReferencePath reference_path(const Routing& routing, const RodModel& model);
 /// The same over the span [s0, s1] of an anchored string.
 ReferencePath reference_path(const Routing& routing, const RodModel& model, double s0_m,

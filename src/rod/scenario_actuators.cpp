@@ -39,8 +39,74 @@ Section narrowest_section(const Section& s) {
   return n;
 }
 
-Routing parse_routing(const json& j, const std::string& path, const Section& section) {
-  const std::string type = peek_choice(j, path, "type", {"straight", "helix"});
+/// Samples per cubic piece at which the spline is checked against the section edge.
+constexpr int kSplineEdgeSamples = 32;
+
+/// `type: "spline"` (docs/scenario-format.md "General routing and string extent"): knots
+/// strictly increasing inside [0, L], one offset per knot, every knot (and, for a cubic,
+/// samples between them) inside the section.
+Routing parse_spline(const json& j, const std::string& path, const Section& section,
+                     double length_m) {
+  const Obj o(j, path, {"type", "s_m", "offset_m", "interpolation"});
+  Routing r;
+  r.type = Routing::Type::kSpline;
+  r.linear = o.has("interpolation") && o.choice("interpolation", {"cubic", "linear"}) == "linear";
+  const json& s = o.required("s_m");
+  if (!s.is_array() || s.size() < 2) {
+    throw InputError(o.key("s_m"), show(s), "must be an array of at least two numbers (knots)");
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const std::string ki = fmt::format("{}[{}]", o.key("s_m"), i);
+    r.knot_s_m.push_back(as_number(s[i], ki));
+    require(r.knot_s_m.back() >= 0.0 && r.knot_s_m.back() <= length_m, ki, r.knot_s_m.back(),
+            fmt::format("must lie inside the body [0, {}] m (body.length_m)",
+                        format_value(length_m)));
+    require(i == 0 || r.knot_s_m[i] > r.knot_s_m[i - 1], ki, r.knot_s_m.back(),
+            fmt::format("must be greater than s_m[{}] = {} (knots strictly increasing)", i - 1,
+                        i > 0 ? format_value(r.knot_s_m[i - 1]) : std::string()));
+  }
+  const json& p = o.required("offset_m");
+  if (!p.is_array() || p.size() != s.size()) {
+    throw InputError(o.key("offset_m"), show(p),
+                     fmt::format("must be an array of {} points [x, y], one per entry of s_m",
+                                 s.size()));
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::string ki = fmt::format("{}[{}]", o.key("offset_m"), i);
+    if (!p[i].is_array() || p[i].size() != 2) {
+      throw InputError(ki, show(p[i]), "must be an array of 2 numbers [x, y]");
+    }
+    r.knot_offsets_m.emplace_back(as_number(p[i][0], ki + "[0]"), as_number(p[i][1], ki + "[1]"));
+  }
+  r.build_spline();
+  if (section.shape == Section::Shape::kCustom) return r;
+  // The knots first (named by index), then, for a cubic, points between them.
+  const auto check = [&](double sk, const std::string& where, const std::string& shown) {
+    const Eigen::Vector3d x = r.r(sk, Side::kLeft);
+    const double dist = x.head<2>().norm();
+    if (!(dist > 0.0)) return;
+    require(dist <= *edge_distance(section, x.x(), x.y()), where, shown,
+            fmt::format("puts the string outside the body section at s = {} m: {} m from the "
+                        "centerline, the edge is at {} m in that direction",
+                        format_value(sk), dist, section.half_extent_m(x.x(), x.y())));
+  };
+  for (std::size_t i = 0; i < r.knot_s_m.size(); ++i) {
+    check(r.knot_s_m[i], fmt::format("{}[{}]", o.key("offset_m"), i), show(p[i]));
+  }
+  if (r.linear) return r;  // straight pieces between points inside a convex section
+  for (std::size_t i = 0; i + 1 < r.knot_s_m.size(); ++i) {
+    for (int k = 1; k < kSplineEdgeSamples; ++k) {
+      check(r.knot_s_m[i] + (r.knot_s_m[i + 1] - r.knot_s_m[i]) * k / kSplineEdgeSamples,
+            o.key("offset_m"), show(p));
+    }
+  }
+  return r;
+}
+
+Routing parse_routing(const json& j, const std::string& path, const Section& section,
+                      double length_m) {
+  const std::string type = peek_choice(j, path, "type", {"straight", "helix", "spline"});
+  if (type == "spline") return parse_spline(j, path, section, length_m);
   Routing r;
   if (type == "straight") {
     const Obj o(j, path, {"type", "offset_m"});
@@ -216,11 +282,11 @@ std::array<double, 2> parse_span(const Obj& o, double length_m) {
 double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
   const ReferencePath ref =
       reference_path(a.routing, model, a.span_start_m(), a.span_end_m(model.length_m));
-  const bool straight = a.routing.type == Routing::Type::kStraight;
-  const std::string routing_key = o.key(straight ? "routing.offset_m" : "routing.radius_m");
+  const bool helix = a.routing.type == Routing::Type::kHelix;
+  const std::string routing_key = o.key(helix ? "routing.radius_m" : "routing.offset_m");
   require(
       ref.min_axial > 0.0, routing_key,
-      straight ? show(o.required("routing").at("offset_m")) : format_value(a.routing.radius_m),
+      helix ? format_value(a.routing.radius_m) : show(o.required("routing").at("offset_m")),
       fmt::format("makes the reference string path fold on the precurved body: e3 . (e3 + "
                   "omega* x r + r') = {} at s = {} m, must be > 0 (for a straight string: the "
                   "offset toward the centre of curvature times |omega*_perp| must be < 1)",
@@ -272,8 +338,8 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
               {"name", "comment", "routing", "count", "drive", "pre_elongation_m", "span_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
-  a.routing =
-      parse_routing(o.required("routing"), o.key("routing"), narrowest_section(model.section));
+  a.routing = parse_routing(o.required("routing"), o.key("routing"),
+                            narrowest_section(model.section), model.length_m);
   if (o.has("count")) {
     // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
     // possibly); 1e9 or 2.0 are floats, which are refused.
@@ -289,6 +355,19 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
     a.count = static_cast<int>(n);
   }
   if (o.has("span_m")) a.span_m = parse_span(o, model.length_m);
+  if (a.routing.type == Routing::Type::kSpline) {
+    // docs/scenario-format.md "General routing and string extent": the span defaults to the
+    // spline's knots and must lie inside them.
+    const double lo = a.routing.knot_s_m.front(), hi = a.routing.knot_s_m.back();
+    if (!a.span_m) {
+      if (lo > 0.0 || hi < model.length_m) a.span_m = std::array<double, 2>{lo, hi};
+    } else {
+      require((*a.span_m)[0] >= lo && (*a.span_m)[1] <= hi, o.key("span_m"),
+              show(o.required("span_m")),
+              fmt::format("must lie inside the spline routing's knots [{}, {}] m (routing.s_m)",
+                          format_value(lo), format_value(hi)));
+    }
+  }
   a.drive = parse_drive(o.required("drive"), o.key("drive"), model);
   if (a.drive.type == Drive::Type::kTca && o.has("pre_elongation_m")) {
     a.pre_elongation_m = o.number("pre_elongation_m");

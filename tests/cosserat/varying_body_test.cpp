@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cosserat/shooting.hpp"
+#include "jacobian_check.hpp"
 #include "models.hpp"
 #include "rod/reference_path.hpp"
 #include "rod/scenario.hpp"
@@ -102,16 +103,7 @@ rod::RodModel loaded_varying_rod() {
 
 TEST(ShootingVaryingBody, SensitivityJacobianThroughLoadedJumpsMatchesCentralDifferences) {
   const rod::RodModel m = loaded_varying_rod();
-  Eigen::VectorXd x(7);
-  x << 0.01, -0.02, -0.01, 2.0, -5.0, 1.0, -0.002;
-  Options o = rk4(40);
-  ShootingSolver sens(m, o);
-  o.jacobian = JacobianMethod::kCentralDifference;
-  ShootingSolver cen(m, o);
-  Eigen::MatrixXd Js, Jc;
-  ASSERT_TRUE(sens.jacobian(Actuation::from_model(m), x, Js));
-  ASSERT_TRUE(cen.jacobian(Actuation::from_model(m), x, Jc));
-  const double worst = test_support::worst_column_relative_difference(Js, Jc);
+  const double worst = testing::sensitivity_vs_central_difference(m, rk4(40));
   std::printf("[jacobian] varying body, sensitivity vs central differences: %.2e\n", worst);
   EXPECT_LE(worst, 1e-7);
 }

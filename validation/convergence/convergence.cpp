@@ -23,7 +23,7 @@
 //      levels must lie above it;
 //   3. the Richardson order of the three finest asymptotic levels lies in the same bracket;
 //   4. the reference's estimated error is below 1 % of the finest asymptotic FE error.
-//   and for the suite: every scenario found runs (at least the 16 shipped ones), each with
+//   and for the suite: every scenario found runs (at least the 17 shipped ones), each with
 //   every order asked for.
 // Usage
 //   validate_convergence --out-dir out/convergence            (full: all suite scenarios)

@@ -26,7 +26,7 @@
 //      an elongation is the offset times the bending it follows), and largest string tension
 //      difference <= k_max 1e-9 r_max (k_max: the stiffest TCA's dF/d delta at the reference;
 //      0 for prescribed tensions, which both solvers must reproduce exactly);
-//   and for the suite: every scenario found runs (at least the 16 shipped ones); one that a
+//   and for the suite: every scenario found runs (at least the 17 shipped ones); one that a
 //   solver does not support is reported "not run" and fails.
 // Usage
 //   validate_crosscheck --out-dir out/crosscheck           (full)
@@ -81,13 +81,18 @@ double position_difference(const xc::CrossCheckRow& r) {
   return std::fmax(r.diff.tip_m, r.diff.mid_m);
 }
 
-/// Largest distance of a string from the centerline, r_max [m] (straight offset or helix radius).
+/// Largest distance of a string from the centerline, r_max [m] (straight offset, helix radius,
+/// or a spline's largest listed offset).
 double max_string_offset_m(const tcasim::rod::RodModel& model) {
+  using Type = tcasim::rod::Routing::Type;
   double r = 0.0;
   for (const auto& a : model.actuators) {
-    r = std::max(r, a.routing.type == tcasim::rod::Routing::Type::kHelix
-                        ? std::abs(a.routing.radius_m)
-                        : a.routing.offset_m.norm());
+    if (a.routing.type == Type::kSpline) {
+      for (const Eigen::Vector2d& p : a.routing.knot_offsets_m) r = std::max(r, p.norm());
+      continue;
+    }
+    r = std::max(r, a.routing.type == Type::kHelix ? std::abs(a.routing.radius_m)
+                                                   : a.routing.offset_m.norm());
   }
   return r;
 }

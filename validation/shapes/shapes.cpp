@@ -23,7 +23,7 @@
 //   3. where e is above the floor (e(kOrderFineSteps) >= kOrderMinImbalance), its observed
 //      order between kOrderCoarseSteps and kOrderFineSteps lies in [4 - kOrderHalfWidth,
 //      4 + kOrderHalfWidth] (RK4): a missing load term would give an e that does not converge.
-//   and for the suite: every scenario found is solved (at least the 16 shipped ones).
+//   and for the suite: every scenario found is solved (at least the 17 shipped ones).
 // Usage
 //   validate_shapes --out-dir out/shapes              (full: N = 128 RK4 steps)
 //   validate_shapes --quick --out-dir /tmp/shapes     (N = 32; --steps N for any even N)
