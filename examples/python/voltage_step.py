@@ -24,8 +24,9 @@ def main():
     ap.add_argument("--scenario",
                     default=ROOT / "validation/scenarios/dynamic/manipulator-voltage-step.json")
     ap.add_argument("--out", default="out/python-examples", help="output folder")
-    ap.add_argument("--duration-s", type=float, default=2.0, help="simulated time [s]")
-    ap.add_argument("--dt-s", type=float, default=0.02, help="time step [s]")
+    ap.add_argument("--duration-s", type=float, default=10.0,
+                    help="simulated time [s] (default: 3 thermal time constants)")
+    ap.add_argument("--dt-s", type=float, default=0.05, help="time step [s]")
     ap.add_argument("--method", default="cosserat", choices=["cosserat", "fe"])
     args = ap.parse_args()
     out = pathlib.Path(args.out)
