@@ -1,5 +1,7 @@
 // The trajectory CSV of the FE dynamics (docs/scenario-format.md "Trajectory file").
 #include <ostream>
+#include <utility>
+#include <vector>
 
 #include "beam_fe/dynamics.hpp"
 #include "rod/trajectory.hpp"
@@ -7,16 +9,10 @@
 namespace tcasim::beam_fe {
 
 rod::TrajectoryRow trajectory_row(const BeamDynamics& dyn) {
-  rod::TrajectoryRow r;
-  r.t_s = dyn.time_s();
-  r.tip_W_m = dyn.tip_position_W_m();
-  r.kinetic_energy_J = dyn.kinetic_energy_J();
-  r.tensions_N = dyn.tensions_N();
-  r.elongations_m = dyn.elongations_m();
-  r.temperatures_K = dyn.segment_temperatures_K();
+  std::vector<Eigen::Vector3d> probes_W_m;
   for (const rod::ProbeResult& p : probe_results(dyn.discretization(), dyn.state()))
-    r.probes_W_m.push_back(p.position_W_m);
-  return r;
+    probes_W_m.push_back(p.position_W_m);
+  return rod::trajectory_row_of(dyn, std::move(probes_W_m));
 }
 
 TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model,

@@ -8,6 +8,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rod/loads.hpp"
@@ -27,6 +28,21 @@ struct TrajectoryRow {
   std::vector<std::vector<double>> temperatures_K;
   std::vector<Eigen::Vector3d> probes_W_m;  ///< per probe of the model its position [m]
 };
+
+/// The row of a dynamics object's current state (Dyn: time_s, tip_position_W_m,
+/// kinetic_energy_J, tensions_N, elongations_m, segment_temperatures_K) with its probes.
+template <class Dyn>
+TrajectoryRow trajectory_row_of(const Dyn& d, std::vector<Eigen::Vector3d> probes_W_m) {
+  TrajectoryRow r;
+  r.t_s = d.time_s();
+  r.tip_W_m = d.tip_position_W_m();
+  r.kinetic_energy_J = d.kinetic_energy_J();
+  r.tensions_N = d.tensions_N();
+  r.elongations_m = d.elongations_m();
+  r.temperatures_K = d.segment_temperatures_K();
+  r.probes_W_m = std::move(probes_W_m);
+  return r;
+}
 
 /// The column names: t_s, tip_x_m, tip_y_m, tip_z_m, kinetic_energy_J, then per actuator
 /// <name>_tension_N, <name>_elongation_m and <name>_temperature_degC (a segmented TCA: one

@@ -37,15 +37,7 @@ void require_count(long long value, const std::string& key, OptionNames style, l
 }
 
 rod::TrajectoryRow cosserat_row(const cosserat::RodDynamics& d) {
-  rod::TrajectoryRow r;
-  r.t_s = d.time_s();
-  r.tip_W_m = d.tip_position_W_m();
-  r.kinetic_energy_J = d.kinetic_energy_J();
-  r.tensions_N = d.tensions_N();
-  r.elongations_m = d.elongations_m();
-  r.temperatures_K = d.segment_temperatures_K();
-  r.probes_W_m = d.probe_positions_W_m();
-  return r;
+  return rod::trajectory_row_of(d, d.probe_positions_W_m());
 }
 
 rod::Result cosserat_frame(const rod::RodModel& model, const cosserat::RodDynamics& d) {

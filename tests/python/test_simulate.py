@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import tcasim
-from conftest import SCENARIO_DIR
+from conftest import SCENARIO_DIR, longest_gap_while
 
 DYNAMIC = SCENARIO_DIR / "dynamic"
 
@@ -145,7 +145,6 @@ def test_the_gil_is_released_while_it_runs():
     """Python code runs in another thread while a simulation is in C++ (as the solve's test in
     test_errors_and_roundtrip.py): with the GIL held, the main thread would stop for the whole
     run; released, its gaps are the operating system's scheduling only."""
-    import threading
     import time
 
     path = DYNAMIC / "steel-cantilever-release.json"
@@ -155,21 +154,6 @@ def test_the_gil_is_released_while_it_runs():
     once = time.perf_counter() - t0
     # About 0.3 s of simulation.
     duration_s = min(10.0, max(0.01, round(0.01 * 0.3 / once, 3)))
-    span = {}
-
-    def work():
-        span["start"] = time.perf_counter()
-        tcasim.simulate(path, duration_s=duration_s, **kw)
-        span["end"] = time.perf_counter()
-
-    ticks = []
-    t = threading.Thread(target=work)
-    t.start()
-    while t.is_alive():
-        ticks.append(time.perf_counter())
-    t.join()
-    run = span["end"] - span["start"]
+    longest_gap, run = longest_gap_while(lambda: tcasim.simulate(path, duration_s=duration_s, **kw))
     assert run > 0.1, "the simulation is too short to tell"
-    inside = [span["start"]] + [x for x in ticks if span["start"] < x < span["end"]] + [span["end"]]
-    longest_gap = max(b - a for a, b in zip(inside, inside[1:]))
     assert longest_gap < 0.5 * run, (longest_gap, run)
