@@ -36,5 +36,6 @@ std::size_t actuator_index(const rod::RodModel& model, const std::string& name,
 void register_scenario(py::module_& m);
 void register_solve(py::module_& m);
 void register_inverse(py::module_& m);
+void register_simulate(py::module_& m);
 
 }  // namespace tcasim::python

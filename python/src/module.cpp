@@ -34,7 +34,7 @@ PYBIND11_MODULE(_tcasim, m) {
   using namespace tcasim::python;
   m.doc() =
       "tcasim's compiled core: scenarios, solves, sweeps, inverse and grasp problems, TCA "
-      "curves. Use it through the `tcasim` package (docs/python.md).";
+      "curves, simulations. Use it through the `tcasim` package (docs/python.md).";
   py::module_ errors = py::module_::import("tcasim._errors");
   input_error_type = errors.attr("InputError").cast<py::object>().release();
   domain_error_type = errors.attr("DomainError").cast<py::object>().release();
@@ -60,4 +60,5 @@ PYBIND11_MODULE(_tcasim, m) {
   register_scenario(m);
   register_solve(m);
   register_inverse(m);
+  register_simulate(m);
 }

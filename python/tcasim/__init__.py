@@ -10,6 +10,8 @@ scenario files, the same solvers, the same numbers as ``tcasim solve``.
     d = sc.to_dict(); d["actuators"][0]["drive"]["temperature_degC"] = 120
     r2 = tcasim.solve(d)                              # a dict is validated like a file
     sw = tcasim.sweep(sc, "tca", temperatures_degC=range(25, 151, 5))
+    tr = tcasim.simulate(sc, duration_s=0.1, dt_s=1e-3)  # as `tcasim simulate`
+    tr.t_s, tr["tip_x_m"], tr.to_csv("trajectory.csv")
 
 Units are SI unless a name carries a suffix (_degC, _deg, _g). Bad input raises
 tcasim.InputError (.key, .value, .rule); a solve that does not converge raises
@@ -41,10 +43,12 @@ from ._errors import DomainError, InputError, SolverError  # noqa: E402
 from ._tcasim import (  # noqa: E402
     Result,
     Scenario,
+    Trajectory,
     data_directory,
     grasp,
     inverse,
     load_scenario,
+    simulate,
     solve,
     sweep,
     tca_curve,
@@ -56,10 +60,12 @@ __all__ = [
     "Result",
     "Scenario",
     "SolverError",
+    "Trajectory",
     "data_directory",
     "grasp",
     "inverse",
     "load_scenario",
+    "simulate",
     "solve",
     "sweep",
     "tca_curve",

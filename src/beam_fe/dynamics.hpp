@@ -30,6 +30,7 @@
 #include "beam_fe/beam_fe.hpp"
 #include "rod/loads.hpp"
 #include "rod/model.hpp"
+#include "rod/trajectory.hpp"
 
 namespace tcasim::beam_fe {
 
@@ -141,6 +142,9 @@ class BeamDynamics {
 
 /// The loads at time t [s] (as cosserat::LoadsAt).
 using LoadsAt = std::function<rod::Loads(double t_s)>;
+
+/// The trajectory row of the current state (rod/trajectory.hpp).
+rod::TrajectoryRow trajectory_row(const BeamDynamics& dyn);
 
 /// Outcome of a trajectory run.
 struct TrajectorySummary {

@@ -2,42 +2,67 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "common/units.hpp"
 
 namespace tcasim::rod {
 
-void write_trajectory_header(std::ostream& os, const RodModel& model) {
-  os << "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J";
+std::vector<std::string> trajectory_columns(const RodModel& model) {
+  std::vector<std::string> c = {"t_s", "tip_x_m", "tip_y_m", "tip_z_m", "kinetic_energy_J"};
   for (const auto& a : model.actuators) {
-    os << ',' << a.name << "_tension_N," << a.name << "_elongation_m";
+    c.push_back(a.name + "_tension_N");
+    c.push_back(a.name + "_elongation_m");
     if (a.drive.type == Drive::Type::kTca && a.drive.segmented) {
       for (std::size_t k = 0; k < a.drive.segments.size(); ++k) {
-        os << ',' << a.name << '_' << k << "_temperature_degC";
+        c.push_back(fmt::format("{}_{}_temperature_degC", a.name, k));
       }
     } else {
-      os << ',' << a.name << "_temperature_degC";
+      c.push_back(a.name + "_temperature_degC");
     }
   }
-  for (const auto& p : model.probes) os << fmt::format(",{0}_x_m,{0}_y_m,{0}_z_m", p.name);
+  for (const auto& p : model.probes) {
+    for (const char* axis : {"_x_m", "_y_m", "_z_m"}) c.push_back(p.name + axis);
+  }
+  return c;
+}
+
+void write_trajectory_header(std::ostream& os, const RodModel& model) {
+  const std::vector<std::string> columns = trajectory_columns(model);
+  for (std::size_t i = 0; i < columns.size(); ++i) os << (i > 0 ? "," : "") << columns[i];
   os << '\n';
 }
 
-void write_trajectory_row(std::ostream& os, double t_s, const Eigen::Vector3d& tip_W_m,
-                          double kinetic_energy_J, const std::vector<double>& tensions_N,
-                          const std::vector<double>& elongations_m,
-                          const std::vector<std::vector<double>>& temperatures_K,
-                          const std::vector<Eigen::Vector3d>& probes_W_m) {
-  os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", t_s, tip_W_m.x(), tip_W_m.y(),
-                    tip_W_m.z(), kinetic_energy_J);
-  for (std::size_t i = 0; i < tensions_N.size(); ++i) {
-    os << fmt::format(",{:.12e},{:.12e}", tensions_N[i], elongations_m[i]);
-    if (i >= temperatures_K.size() || temperatures_K[i].empty()) {
+std::vector<double> trajectory_values(const TrajectoryRow& row) {
+  std::vector<double> v = {row.t_s, row.tip_W_m.x(), row.tip_W_m.y(), row.tip_W_m.z(),
+                           row.kinetic_energy_J};
+  for (std::size_t i = 0; i < row.tensions_N.size(); ++i) {
+    v.push_back(row.tensions_N[i]);
+    v.push_back(row.elongations_m[i]);
+    if (i >= row.temperatures_K.size() || row.temperatures_K[i].empty()) {
+      v.push_back(std::nan(""));  // tension drive: no temperature
+      continue;
+    }
+    for (const double T_K : row.temperatures_K[i]) v.push_back(units::K_to_degC(T_K));
+  }
+  for (const Eigen::Vector3d& p : row.probes_W_m) v.insert(v.end(), {p.x(), p.y(), p.z()});
+  return v;
+}
+
+void write_trajectory_row(std::ostream& os, const TrajectoryRow& row) {
+  os << fmt::format("{:.9g},{:.12e},{:.12e},{:.12e},{:.9e}", row.t_s, row.tip_W_m.x(),
+                    row.tip_W_m.y(), row.tip_W_m.z(), row.kinetic_energy_J);
+  for (std::size_t i = 0; i < row.tensions_N.size(); ++i) {
+    os << fmt::format(",{:.12e},{:.12e}", row.tensions_N[i], row.elongations_m[i]);
+    if (i >= row.temperatures_K.size() || row.temperatures_K[i].empty()) {
       os << ",nan";  // tension drive: no temperature
       continue;
     }
-    for (const double T_K : temperatures_K[i]) os << fmt::format(",{:.9f}", units::K_to_degC(T_K));
+    for (const double T_K : row.temperatures_K[i]) {
+      os << fmt::format(",{:.9f}", units::K_to_degC(T_K));
+    }
   }
-  for (const Eigen::Vector3d& p : probes_W_m)
+  for (const Eigen::Vector3d& p : row.probes_W_m)
     os << fmt::format(",{:.12e},{:.12e},{:.12e}", p.x(), p.y(), p.z());
   os << '\n';
 }

@@ -1,28 +1,110 @@
 #pragma once
-/// The trajectory CSV of `tcasim simulate` (docs/scenario-format.md "Trajectory file"): one
-/// header and one row format for both methods' dynamics.
+/// The trajectory of a simulation (docs/scenario-format.md "Trajectory file"): one row type,
+/// one CSV format and one time loop for both methods' dynamics (cosserat::RodDynamics,
+/// beam_fe::BeamDynamics), shared by `tcasim simulate` and tcasim.simulate (study/simulation.hpp).
+#include <fmt/format.h>
+
 #include <Eigen/Core>
+#include <functional>
 #include <ostream>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 
 namespace tcasim::rod {
 
-/// The header line: t_s, tip_x_m, tip_y_m, tip_z_m, kinetic_energy_J, then per actuator
+/// The state of one output time.
+struct TrajectoryRow {
+  double t_s = 0.0;                  ///< time [s]
+  Eigen::Vector3d tip_W_m = Eigen::Vector3d::Zero();  ///< tip position [m], world frame
+  double kinetic_energy_J = 0.0;     ///< kinetic energy [J]
+  std::vector<double> tensions_N;    ///< per actuator: tension of one string [N]
+  std::vector<double> elongations_m; ///< per actuator: its elongation [m]
+  /// Per actuator its temperatures [K] (one per segment; empty: a tension drive). May be
+  /// empty altogether (no actuator has any).
+  std::vector<std::vector<double>> temperatures_K;
+  std::vector<Eigen::Vector3d> probes_W_m;  ///< per probe of the model its position [m]
+};
+
+/// The row of a dynamics object's current state (Dyn: time_s, tip_position_W_m,
+/// kinetic_energy_J, tensions_N, elongations_m, segment_temperatures_K) with its probes.
+template <class Dyn>
+TrajectoryRow trajectory_row_of(const Dyn& d, std::vector<Eigen::Vector3d> probes_W_m) {
+  TrajectoryRow r;
+  r.t_s = d.time_s();
+  r.tip_W_m = d.tip_position_W_m();
+  r.kinetic_energy_J = d.kinetic_energy_J();
+  r.tensions_N = d.tensions_N();
+  r.elongations_m = d.elongations_m();
+  r.temperatures_K = d.segment_temperatures_K();
+  r.probes_W_m = std::move(probes_W_m);
+  return r;
+}
+
+/// The column names: t_s, tip_x_m, tip_y_m, tip_z_m, kinetic_energy_J, then per actuator
 /// <name>_tension_N, <name>_elongation_m and <name>_temperature_degC (a segmented TCA: one
 /// <name>_<k>_temperature_degC per segment, k = 0, 1, ... base to tip), then per probe
 /// <name>_x_m, <name>_y_m, <name>_z_m.
+std::vector<std::string> trajectory_columns(const RodModel& model);
+
+/// The header line (the column names, comma-separated).
 void write_trajectory_header(std::ostream& os, const RodModel& model);
 
-/// One row at time t_s [s]: the tip position [m], the kinetic energy [J] and per actuator the
-/// tension of one string [N], its elongation [m] and its temperatures [K] (written in degC;
-/// none: a tension drive, written as nan). temperatures_K may be empty (no actuator has any).
-/// probes_W_m: the world position of each probe of the model [m], in the model's order.
-void write_trajectory_row(std::ostream& os, double t_s, const Eigen::Vector3d& tip_W_m,
-                          double kinetic_energy_J, const std::vector<double>& tensions_N,
-                          const std::vector<double>& elongations_m,
-                          const std::vector<std::vector<double>>& temperatures_K,
-                          const std::vector<Eigen::Vector3d>& probes_W_m);
+/// The row's numbers in the order and units of the columns: temperatures in degC, nan for a
+/// tension drive's temperature.
+std::vector<double> trajectory_values(const TrajectoryRow& row);
+
+/// One row of the CSV (t_s %.9g, positions and forces %.12e, energy %.9e, degC %.9f).
+void write_trajectory_row(std::ostream& os, const TrajectoryRow& row);
+
+/// How a run of the time loop ended.
+struct TrajectoryOutcome {
+  bool ok = false;             ///< the static state and every step converged
+  long long steps_done = 0;    ///< converged time steps
+  std::string status = "converged";  ///< the failing solve's status (to_string of it)
+  /// Why it stopped early (empty when ok): "static initial state did not converge (STATUS):
+  /// ..." or "time step to t = T s failed (STATUS): ..."; the CSV's last line is "# " + it.
+  std::string message;
+};
+
+/// The time loop of both dynamics: the static state under loads_at(0), then `steps` steps of
+/// dt_s to t = k dt_s; on_row(row_of(dyn)) at t = 0, every `output_every`-th step and the
+/// last; on_step(k) after each converged step. A failed solve ends the loop (the rows before
+/// it were delivered). Dyn: initialize(Loads) and step(Loads) return a summary with
+/// converged(), status (to_string found in Dyn's namespace) and message.
+template <class Dyn, class RowOf>
+TrajectoryOutcome run_trajectory(Dyn& dyn, const std::function<Loads(double)>& loads_at,
+                                 double dt_s, long long steps, long long output_every,
+                                 RowOf row_of,
+                                 const std::function<void(const TrajectoryRow&)>& on_row,
+                                 const std::function<void(long long)>& on_step = {}) {
+  TrajectoryOutcome out;
+  const auto init = dyn.initialize(loads_at(0.0));
+  if (!init.converged()) {
+    out.status = to_string(init.status);
+    out.message = fmt::format("static initial state did not converge ({}): {}", out.status,
+                              init.message);
+    return out;
+  }
+  on_row(row_of(dyn));
+  for (long long k = 1; k <= steps; ++k) {
+    const double t_new = k * dt_s;
+    const auto s = dyn.step(loads_at(t_new));
+    if (!s.converged()) {
+      out.status = to_string(s.status);
+      out.message =
+          fmt::format("time step to t = {:.9g} s failed ({}): {}", t_new, out.status, s.message);
+      return out;
+    }
+    out.steps_done = k;
+    if (k % output_every == 0 || k == steps) on_row(row_of(dyn));
+    if (on_step) on_step(k);
+  }
+  out.ok = true;
+  return out;
+}
 
 }  // namespace tcasim::rod

@@ -7,6 +7,8 @@ import json
 import os
 import pathlib
 import subprocess
+import threading
+import time
 
 import pytest
 
@@ -39,3 +41,24 @@ def run_cli(tcasim_bin):
         return subprocess.run([tcasim_bin, *map(str, args)], capture_output=True, text=True)
 
     return run
+
+
+def longest_gap_while(work):
+    """Runs work() in another thread while this one ticks; returns (the longest gap between
+    ticks during the call [s], the call's duration [s]). With the GIL held by the call, the
+    gap is the whole call; released, the operating system's scheduling only."""
+    span = {}
+
+    def timed():
+        span["start"] = time.perf_counter()
+        work()
+        span["end"] = time.perf_counter()
+
+    ticks = []
+    t = threading.Thread(target=timed)
+    t.start()
+    while t.is_alive():
+        ticks.append(time.perf_counter())
+    t.join()
+    inside = [span["start"]] + [x for x in ticks if span["start"] < x < span["end"]] + [span["end"]]
+    return max(b - a for a, b in zip(inside, inside[1:])), span["end"] - span["start"]

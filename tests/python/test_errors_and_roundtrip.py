@@ -7,7 +7,7 @@ import json
 import pytest
 
 import tcasim
-from conftest import SCENARIO_DIR
+from conftest import SCENARIO_DIR, longest_gap_while
 
 BASE = SCENARIO_DIR / "circular-manipulator.json"
 
@@ -151,7 +151,6 @@ def test_the_gil_is_released_during_solves():
     """Python code runs in another thread while a solve is in C++: with the GIL held, the
     main thread would stop for the whole solve (one gap between its ticks as long as the
     solve); released, its gaps are the operating system's scheduling only."""
-    import threading
     import time
 
     sc = tcasim.load_scenario(BASE)
@@ -160,23 +159,9 @@ def test_the_gil_is_released_during_solves():
     tcasim.solve(sc, method="fe", elements=GIL_TEST_ELEMENTS)
     once = time.perf_counter() - t0
     elements = min(10000, max(GIL_TEST_ELEMENTS, int(GIL_TEST_ELEMENTS * 0.3 / once)))
-    span = {}
-
-    def work():
-        span["start"] = time.perf_counter()
-        tcasim.solve(sc, method="fe", elements=elements)
-        span["end"] = time.perf_counter()
-
-    ticks = []
-    t = threading.Thread(target=work)
-    t.start()
-    while t.is_alive():
-        ticks.append(time.perf_counter())
-    t.join()
-    duration = span["end"] - span["start"]
+    longest_gap, duration = longest_gap_while(
+        lambda: tcasim.solve(sc, method="fe", elements=elements))
     assert duration > 0.1, "the solve is too short to tell"
-    inside = [span["start"]] + [x for x in ticks if span["start"] < x < span["end"]] + [span["end"]]
-    longest_gap = max(b - a for a, b in zip(inside, inside[1:]))
     assert longest_gap < 0.5 * duration, (longest_gap, duration)
 
 

@@ -35,3 +35,10 @@ def test_design_study_writes_its_table(tmp_path):
     out = run("design_study.py", "--out", csv, "--threads", "--points", 2)
     assert "8 points, 0 failed" in out
     assert len(csv.read_text().splitlines()) == 9
+
+
+def test_voltage_step_writes_its_plot_and_trajectory(tmp_path):
+    out = run("voltage_step.py", "--out", tmp_path, "--duration-s", 0.2, "--dt-s", 0.05)
+    assert "5 rows to t = 0.2 s, converged" in out
+    assert (tmp_path / "voltage_step.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (tmp_path / "voltage_step.csv").read_text().startswith("t_s,tip_x_m,")

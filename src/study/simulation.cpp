@@ -1,0 +1,173 @@
+#include "study/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "beam_fe/dynamics.hpp"
+#include "common/error.hpp"
+#include "cosserat/dynamics.hpp"
+#include "rod/loads.hpp"
+
+namespace tcasim::study {
+
+namespace {
+
+/// Time steps of one run: more than this many is a typo, not a study (as apps/cli_util.hpp).
+constexpr long long kMaxTimeSteps = 100000000;
+/// RK4 steps along s (as apps/cli_util.hpp kMaxSteps).
+constexpr int kMaxSteps = 100000;
+
+void require_count(long long value, const std::string& key, OptionNames style, long long lo,
+                   long long hi) {
+  require(value >= lo && value <= hi, option_name(key, style), static_cast<double>(value),
+          fmt::format("must be an integer in [{}, {}]", lo, hi));
+}
+
+/// An InputError of a dynamics constructor under the option's name.
+[[noreturn]] void rethrow_named(const InputError& e, OptionNames style) {
+  std::string key = e.key();
+  if (key.rfind("dynamics.", 0) == 0) key = key.substr(9);
+  if (key == "steps" || key == "rho_inf" || key == "elements" || key == "order") {
+    throw InputError(option_name(key, style), e.value(), e.rule());
+  }
+  throw e;
+}
+
+rod::TrajectoryRow cosserat_row(const cosserat::RodDynamics& d) {
+  return rod::trajectory_row_of(d, d.probe_positions_W_m());
+}
+
+rod::Result cosserat_frame(const rod::RodModel& model, const cosserat::RodDynamics& d) {
+  rod::Result r;
+  r.scenario = model.name;
+  r.method = "cosserat";
+  r.converged = true;
+  const auto& grid = d.grid_states();
+  const auto& grid_s = d.grid_s_m();
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    r.centerline_s_m.push_back(grid_s[i]);
+    r.centerline_p_W_m.push_back(grid[i].head<3>());
+    r.centerline_R_WB.push_back(Eigen::Map<const Eigen::Matrix3d>(grid[i].data() + 3));
+  }
+  r.tip_position_W_m = d.tip_position_W_m();
+  r.tip_R_WB = d.tip_rotation_W();
+  return r;
+}
+
+rod::Result fe_frame(const rod::RodModel& model, const beam_fe::BeamDynamics& d) {
+  rod::Result r;
+  r.scenario = model.name;
+  r.method = "fe";
+  r.converged = true;
+  r.centerline_s_m = d.state().s_m;
+  r.centerline_p_W_m = d.state().p_W_m;
+  for (const auto& q : d.state().q_WB) r.centerline_R_WB.push_back(q.toRotationMatrix());
+  r.tip_position_W_m = d.tip_position_W_m();
+  r.tip_R_WB = d.tip_rotation_W();
+  return r;
+}
+
+/// The loop for one dynamics object: rows and frames to the hooks.
+template <class Dyn, class RowOf, class FrameOf>
+rod::TrajectoryOutcome run(Dyn& dyn, const rod::RodModel& model, const SimulationOptions& o,
+                           long long n_steps, const SimulationHooks& hooks, RowOf row_of,
+                           FrameOf frame_of) {
+  // The loads over time: the scenario's time profiles (tensions, temperatures, tip wrench)
+  // at t; the static state at t = 0 takes them at t = 0 (docs/scenario-format.md "Time
+  // profiles"). An electric drive's temperatures are the solver's thermal states.
+  const bool release = o.release_tip_load;
+  const std::function<rod::Loads(double)> loads_at = [&model, release](double t) {
+    rod::Loads l = t > 0.0 ? rod::Loads::at_time(model, t) : rod::Loads::from_model(model);
+    if (release && t > 0.0) {
+      l.tip_force_W_N.setZero();
+      l.tip_moment_W_Nm.setZero();
+    }
+    return l;
+  };
+  return rod::run_trajectory(
+      dyn, loads_at, o.dt_s, n_steps, o.output_every, row_of,
+      [&](const rod::TrajectoryRow& row) {
+        if (hooks.on_row) hooks.on_row(row);
+        if (hooks.on_frame) hooks.on_frame(frame_of(model, dyn));
+      },
+      [&](long long k) {
+        if (hooks.on_step) hooks.on_step(k, n_steps);
+      });
+}
+
+}  // namespace
+
+std::string option_name(const std::string& key, OptionNames style) {
+  if (style == OptionNames::kPython) return key;
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+long long check_simulation_options(const SimulationOptions& o, OptionNames style) {
+  const auto name = [style](const char* key) { return option_name(key, style); };
+  require(o.method == "cosserat" || o.method == "fe", name("method"), o.method,
+          "must be cosserat or fe");
+  require(std::isfinite(o.duration_s) && o.duration_s > 0.0, name("duration_s"), o.duration_s,
+          "must be > 0");
+  require(std::isfinite(o.dt_s) && o.dt_s > 0.0, name("dt_s"), o.dt_s, "must be > 0");
+  const double n_steps = std::round(o.duration_s / o.dt_s);
+  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, name("duration_s"), o.duration_s,
+          fmt::format("must be between 1 and {} time steps of {}", kMaxTimeSteps, name("dt_s")));
+  require(o.alpha >= -0.5 && o.alpha <= 0.0, name("alpha"), o.alpha, "must be in [-0.5, 0]");
+  require_count(o.output_every, "output_every", style, 1, kMaxTimeSteps);
+  if (o.steps != 0) require_count(o.steps, "steps", style, 1, kMaxSteps);
+  if (o.viscosity_Pa_s) {
+    require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0, name("viscosity_Pa_s"),
+            *o.viscosity_Pa_s, "must be >= 0");
+  }
+  if (o.tip_mass_kg) {
+    require(std::isfinite(*o.tip_mass_kg) && *o.tip_mass_kg >= 0.0, name("tip_mass_kg"),
+            *o.tip_mass_kg, "must be >= 0");
+  }
+  require_count(o.max_iterations, "max_iterations", style, 1, 1000);
+  return static_cast<long long>(n_steps);
+}
+
+rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,
+                                const SimulationHooks& hooks, OptionNames style) {
+  const long long n_steps = check_simulation_options(o, style);
+  if (o.method == "fe") {
+    beam_fe::DynamicsOptions fo;
+    fo.elements = o.elements;
+    fo.order = o.order;
+    fo.dt_s = o.dt_s;
+    fo.rho_inf = o.rho_inf;
+    fo.max_iterations = o.max_iterations;
+    // The option overrides the scenario's viscosity (a constant or a profile along s).
+    if (o.viscosity_Pa_s) fo.viscosity_Pa_s = *o.viscosity_Pa_s;
+    fo.tip_mass_kg = o.tip_mass_kg.value_or(model.tip_mass_kg);
+    std::unique_ptr<beam_fe::BeamDynamics> dyn;
+    try {
+      dyn = std::make_unique<beam_fe::BeamDynamics>(model, fo);
+    } catch (const InputError& e) {
+      rethrow_named(e, style);
+    }
+    return run(*dyn, model, o, n_steps, hooks, beam_fe::trajectory_row, fe_frame);
+  }
+  cosserat::DynamicsOptions co;
+  co.dt_s = o.dt_s;
+  co.alpha = o.alpha;
+  co.steps = o.steps != 0 ? o.steps : cosserat::recommended_steps(model, co);
+  // The options override the scenario's keys only when given.
+  if (o.viscosity_Pa_s) co.viscosity_Pa_s = *o.viscosity_Pa_s;
+  if (o.tip_mass_kg) co.tip_mass_kg = *o.tip_mass_kg;
+  co.max_iterations = o.max_iterations;
+  std::unique_ptr<cosserat::RodDynamics> dyn;
+  try {
+    dyn = std::make_unique<cosserat::RodDynamics>(model, co);
+  } catch (const InputError& e) {
+    rethrow_named(e, style);
+  }
+  return run(*dyn, model, o, n_steps, hooks, cosserat_row, cosserat_frame);
+}
+
+}  // namespace tcasim::study

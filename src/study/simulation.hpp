@@ -1,0 +1,57 @@
+#pragma once
+/// One simulation of rod dynamics from the static state at t = 0 (docs/scenario-format.md
+/// "Trajectory file"), by the shooting method (cosserat/dynamics.hpp) or the beam FE
+/// (beam_fe/dynamics.hpp): the work of `tcasim simulate` and tcasim.simulate, one time loop
+/// (rod::run_trajectory) for both.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "rod/model.hpp"
+#include "rod/result.hpp"
+#include "rod/trajectory.hpp"
+
+namespace tcasim::study {
+
+/// The options of `tcasim simulate` (its flags; tcasim.simulate's keywords).
+struct SimulationOptions {
+  std::string method = "cosserat";  ///< "cosserat" or "fe"
+  double duration_s = 0.0;          ///< simulated time T [s], > 0
+  double dt_s = 0.0;                ///< time step [s], > 0 (round(T / dt) steps)
+  long long output_every = 1;       ///< a row every K-th step (and t = 0, the last step)
+  int max_iterations = 30;          ///< Newton iterations per time step
+  bool release_tip_load = false;    ///< the scenario's tip load acts at t = 0 only
+  std::optional<double> viscosity_Pa_s;  ///< overrides body.material.viscosity_Pa_s [Pa s]
+  std::optional<double> tip_mass_kg;     ///< overrides tip_mass_kg [kg]
+  double alpha = -0.2;  ///< cosserat: BDF-alpha parameter in [-0.5, 0]
+  int steps = 0;        ///< cosserat: RK4 steps along s; 0: cosserat::recommended_steps
+  int elements = 16;    ///< fe: number of elements
+  int order = 2;        ///< fe: element order, 1 or 2
+  double rho_inf = 0.9; ///< fe: generalized-alpha spectral radius at infinite frequency
+};
+
+/// How option names appear in errors: "dt_s" (Python) or "--dt-s" (the command line).
+enum class OptionNames { kPython, kFlags };
+
+/// The name of option `key` (snake_case) in `style`.
+std::string option_name(const std::string& key, OptionNames style);
+
+/// Checks the options' ranges (InputError naming the option in `style`, its value and the
+/// rule); returns the number of time steps round(duration_s / dt_s).
+long long check_simulation_options(const SimulationOptions& o, OptionNames style);
+
+/// What a simulation reports while it runs; every callback is optional.
+struct SimulationHooks {
+  std::function<void(const rod::TrajectoryRow&)> on_row;  ///< each output row, in order
+  /// The shape at each output row (centerline, tip frame; for VTK frames); only built when set.
+  std::function<void(const rod::Result&)> on_frame;
+  std::function<void(long long done, long long total)> on_step;  ///< after each time step
+};
+
+/// Runs the simulation of `model` (checked options; InputError in `style` for what the
+/// dynamics refuses). A failed step is an outcome (ok false with the message), not an error.
+rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,
+                                const SimulationHooks& hooks,
+                                OptionNames style = OptionNames::kPython);
+
+}  // namespace tcasim::study
