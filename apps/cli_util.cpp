@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "study/simulation.hpp"
 #include "common/grid.hpp"
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
@@ -165,13 +166,7 @@ Shard parse_shard(const std::string& text, const std::string& flag) {
 }
 
 long long require_time_flags(double duration_s, double dt_s, double alpha) {
-  require(std::isfinite(duration_s) && duration_s > 0.0, "--duration-s", duration_s, "must be > 0");
-  require(std::isfinite(dt_s) && dt_s > 0.0, "--dt-s", dt_s, "must be > 0");
-  const double n_steps = std::round(duration_s / dt_s);
-  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, "--duration-s", duration_s,
-          fmt::format("must be between 1 and {} time steps of --dt-s", kMaxTimeSteps));
-  require(alpha >= -0.5 && alpha <= 0.0, "--alpha", alpha, "must be in [-0.5, 0]");
-  return static_cast<long long>(n_steps);
+  return study::check_time_options(duration_s, dt_s, alpha, study::OptionNames::kFlags);
 }
 
 void require_count(long long value, const std::string& flag, long long lo, long long hi) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rod/model.hpp"
+#include "study/simulation.hpp"
 #include "tca/tca.hpp"
 
 namespace tcasim::app {
@@ -32,8 +33,8 @@ inline constexpr int kMaxJobs = 1024;
 /// Shards of `tcasim sweep --shard I/N`: a sweep has at most a million points (common/grid.hpp).
 inline constexpr long long kMaxShards = 1000000;
 
-/// Time steps of one simulation: more than this many is a typo, not a study.
-inline constexpr long long kMaxTimeSteps = 100000000;
+/// Time steps of one simulation (study/simulation.hpp).
+using study::kMaxTimeSteps;
 
 /// Checks `--duration-s`, `--dt-s` (both > 0, 1 .. kMaxTimeSteps steps) and `--alpha` (in
 /// [-0.5, 0]) of `tcasim simulate` and `compare --dynamic`; returns round(duration / dt).

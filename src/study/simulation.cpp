@@ -15,8 +15,6 @@ namespace tcasim::study {
 
 namespace {
 
-/// Time steps of one run: more than this many is a typo, not a study (as apps/cli_util.hpp).
-constexpr long long kMaxTimeSteps = 100000000;
 /// RK4 steps along s (as apps/cli_util.hpp kMaxSteps).
 constexpr int kMaxSteps = 100000;
 
@@ -107,17 +105,23 @@ std::string option_name(const std::string& key, OptionNames style) {
   return flag;
 }
 
+long long check_time_options(double duration_s, double dt_s, double alpha, OptionNames style) {
+  const auto name = [style](const char* key) { return option_name(key, style); };
+  require(std::isfinite(duration_s) && duration_s > 0.0, name("duration_s"), duration_s,
+          "must be > 0");
+  require(std::isfinite(dt_s) && dt_s > 0.0, name("dt_s"), dt_s, "must be > 0");
+  const double n_steps = std::round(duration_s / dt_s);
+  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, name("duration_s"), duration_s,
+          fmt::format("must be between 1 and {} time steps of {}", kMaxTimeSteps, name("dt_s")));
+  require(alpha >= -0.5 && alpha <= 0.0, name("alpha"), alpha, "must be in [-0.5, 0]");
+  return static_cast<long long>(n_steps);
+}
+
 long long check_simulation_options(const SimulationOptions& o, OptionNames style) {
   const auto name = [style](const char* key) { return option_name(key, style); };
   require(o.method == "cosserat" || o.method == "fe", name("method"), o.method,
           "must be cosserat or fe");
-  require(std::isfinite(o.duration_s) && o.duration_s > 0.0, name("duration_s"), o.duration_s,
-          "must be > 0");
-  require(std::isfinite(o.dt_s) && o.dt_s > 0.0, name("dt_s"), o.dt_s, "must be > 0");
-  const double n_steps = std::round(o.duration_s / o.dt_s);
-  require(n_steps >= 1 && n_steps <= kMaxTimeSteps, name("duration_s"), o.duration_s,
-          fmt::format("must be between 1 and {} time steps of {}", kMaxTimeSteps, name("dt_s")));
-  require(o.alpha >= -0.5 && o.alpha <= 0.0, name("alpha"), o.alpha, "must be in [-0.5, 0]");
+  const long long n_steps = check_time_options(o.duration_s, o.dt_s, o.alpha, style);
   require_count(o.output_every, "output_every", style, 1, kMaxTimeSteps);
   if (o.steps != 0) require_count(o.steps, "steps", style, 1, kMaxSteps);
   if (o.viscosity_Pa_s) {
@@ -129,7 +133,7 @@ long long check_simulation_options(const SimulationOptions& o, OptionNames style
             *o.tip_mass_kg, "must be >= 0");
   }
   require_count(o.max_iterations, "max_iterations", style, 1, 1000);
-  return static_cast<long long>(n_steps);
+  return n_steps;
 }
 
 rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,

@@ -13,6 +13,9 @@
 
 namespace tcasim::study {
 
+/// The most time steps a simulation takes (a typo in --dt-s would otherwise run for days).
+inline constexpr long long kMaxTimeSteps = 100000000;
+
 /// The options of `tcasim simulate` (its flags; tcasim.simulate's keywords).
 struct SimulationOptions {
   std::string method = "cosserat";  ///< "cosserat" or "fe"
@@ -35,6 +38,10 @@ enum class OptionNames { kPython, kFlags };
 
 /// The name of option `key` (snake_case) in `style`.
 std::string option_name(const std::string& key, OptionNames style);
+
+/// Checks duration, time step and BDF-alpha parameter (InputError naming the option in
+/// `style`); returns the number of time steps round(duration_s / dt_s), in [1, kMaxTimeSteps].
+long long check_time_options(double duration_s, double dt_s, double alpha, OptionNames style);
 
 /// Checks the options' ranges (InputError naming the option in `style`, its value and the
 /// rule); returns the number of time steps round(duration_s / dt_s).
