@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <utility>
 
 #include "common/error.hpp"
@@ -14,6 +15,7 @@
 #include "common/grid.hpp"
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
+#include "rod/tca_choice.hpp"
 
 namespace tcasim::app {
 
@@ -116,32 +118,16 @@ std::vector<int> actuator_indices(const rod::RodModel& model, const std::string&
 std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
                                            const std::string& material_name,
                                            const std::string& f12_form) {
-  const auto tcas = rod::read_tcas(file);
-  std::string ids;
-  for (const auto& [name, t] : tcas) ids += (ids.empty() ? "" : ", ") + name;
-  std::shared_ptr<const tca::Tca> chosen;
-  if (id.empty()) {
-    require(tcas.size() == 1, "--tca", "(missing)",
-            fmt::format("is required: {} defines {} TCAs: {}", file, tcas.size(), ids));
-    chosen = tcas.begin()->second;
-  } else {
-    const auto it = tcas.find(id);
-    require(it != tcas.end(), "--tca", id,
-            fmt::format("is not a TCA of {} (it has: {})", file, ids));
-    chosen = it->second;
-  }
-  if (material_name.empty() && f12_form.empty()) return chosen;
-  tca::Parameters p = chosen->parameters();
-  tca::Material m = chosen->material();
-  if (!material_name.empty()) {
-    m = rod::load_material(material_name, "--material");
-    // Without an explicit form, the overriding material's own form applies (as in a file).
-    if (f12_form.empty() && m.f12_form) p.f12_form = *m.f12_form;
-  }
-  if (!f12_form.empty()) {
-    p.f12_form = f12_form == "paper" ? tca::F12Form::kPaper : tca::F12Form::kCastigliano;
-  }
-  return std::make_shared<const tca::Tca>(p, std::move(m));
+  const auto given = [](const std::string& v) {
+    return v.empty() ? std::nullopt : std::optional<std::string>(v);
+  };
+  // The flag of an argument: "f12_form" -> "--f12-form".
+  const auto flag = [](std::string key) {
+    std::replace(key.begin(), key.end(), '_', '-');
+    return "--" + key;
+  };
+  return rod::select_tca(rod::read_tcas(file), file,
+                         {given(id), given(material_name), given(f12_form)}, flag);
 }
 
 Shard parse_shard(const std::string& text, const std::string& flag) {

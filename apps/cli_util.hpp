@@ -72,7 +72,8 @@ std::vector<int> actuator_indices(const rod::RodModel& model, const std::string&
                                   const std::string& flag);
 
 /// Picks one TCA of a scenario or TCA file (`--tca` id, required when the file has several),
-/// applying the optional material and f12-form overrides. Throws InputError naming the flag.
+/// applying the optional material and f12-form overrides (rod::select_tca with the flags'
+/// names; an empty text is an absent flag). Throws InputError naming the flag.
 std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
                                            const std::string& material_name,
                                            const std::string& f12_form);

@@ -2,7 +2,8 @@
 // C++ side of the Python-overhead benchmark (bench/python_overhead.py compares the medians).
 //  - cosserat: cosserat::solve(model, Options{}) of the shipped circular manipulator (RK4,
 //    100 steps, the command line's defaults), returning the rod::Result;
-//  - fe: beam_fe::solve + make_result with 16 quadratic elements (the defaults).
+//  - fe: beam_fe::solve + make_result with 16 quadratic elements (the defaults);
+//    BM_FeMakeResult: make_result alone.
 // Run: build/bench/bench_solve_api --benchmark_repetitions=10
 // --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -44,6 +45,20 @@ void BM_SolveFe(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SolveFe)->Unit(benchmark::kMicrosecond);
+
+// The result record alone (make_result of a converged state): the part of BM_SolveFe after
+// the solve.
+void BM_FeMakeResult(benchmark::State& state) {
+  const rod::RodModel& model = manipulator();
+  const beam_fe::Options options;
+  beam_fe::State s;
+  const beam_fe::Summary summary = beam_fe::solve(model, options, s);
+  for (auto _ : state) {
+    rod::Result r = beam_fe::make_result(model, options, s, summary);
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_FeMakeResult)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

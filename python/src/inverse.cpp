@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +22,7 @@
 #include "json_convert.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
+#include "rod/tca_choice.hpp"
 #include "study/inverse_document.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
@@ -65,40 +65,6 @@ py::object checked(const study::DocumentRun& r, bool check, const std::string& w
                        out);
   }
   return out;
-}
-
-/// Picks one TCA of `tcas` (as app::select_tca, with the Python argument names).
-std::shared_ptr<const tca::Tca> pick_tca(
-    const std::map<std::string, std::shared_ptr<const tca::Tca>>& tcas, const std::string& source,
-    const std::optional<std::string>& id, const std::optional<std::string>& material_name,
-    const std::optional<std::string>& f12_form) {
-  std::string ids;
-  for (const auto& [name, t] : tcas) ids += (ids.empty() ? "" : ", ") + name;
-  std::shared_ptr<const tca::Tca> chosen;
-  if (!id) {
-    require(tcas.size() == 1, "tca", "(missing)",
-            fmt::format("is required: {} defines {} TCAs: {}", source, tcas.size(), ids));
-    chosen = tcas.begin()->second;
-  } else {
-    const auto it = tcas.find(*id);
-    require(it != tcas.end(), "tca", *id,
-            fmt::format("is not a TCA of {} (it has: {})", source, ids));
-    chosen = it->second;
-  }
-  if (f12_form) {
-    require(*f12_form == "paper" || *f12_form == "castigliano", "f12_form", *f12_form,
-            "must be paper or castigliano");
-  }
-  if (!material_name && !f12_form) return chosen;
-  tca::Parameters p = chosen->parameters();
-  tca::Material m = chosen->material();
-  if (material_name) {
-    m = rod::load_material(*material_name, "material");
-    if (!f12_form && m.f12_form) p.f12_form = *m.f12_form;
-  }
-  if (f12_form)
-    p.f12_form = *f12_form == "paper" ? tca::F12Form::kPaper : tca::F12Form::kCastigliano;
-  return std::make_shared<const tca::Tca>(p, std::move(m));
 }
 
 }  // namespace
@@ -184,7 +150,7 @@ iterations, tip.position_m [m], converged, message.)");
       [](py::object source, std::vector<double> temperatures_degC, std::optional<double> tension_N,
          std::optional<double> load_g, std::optional<std::string> tca_id,
          std::optional<std::string> material, std::optional<std::string> f12_form) {
-        std::map<std::string, std::shared_ptr<const tca::Tca>> tcas;
+        rod::TcaMap tcas;
         std::string name;
         if (py::isinstance<Scenario>(source) || PyDict_Check(source.ptr())) {
           const std::shared_ptr<Scenario> sc = as_scenario(source);
@@ -196,7 +162,9 @@ iterations, tip.position_m [m], converged, message.)");
         }
         require(tension_N.has_value() != load_g.has_value(), "tension_N", "(with load_g)",
                 "give exactly one of tension_N and load_g");
-        const auto tca = pick_tca(tcas, name, tca_id, material, f12_form);
+        // As `tcasim tca` (rod/tca_choice.hpp), the arguments under their Python names.
+        const auto tca = rod::select_tca(tcas, name, {tca_id, material, f12_form},
+                                         [](const std::string& key) { return key; });
         double t_N = 0.0;
         if (load_g) {
           require(std::isfinite(*load_g) && *load_g >= 0.0, "load_g", *load_g,

@@ -302,16 +302,6 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   return true;
 }
 
-std::vector<double> Discretization::string_lengths(const State& state) const {
-  std::vector<double> l(model_->actuators.size(), 0.0);
-  ElementEvaluation ev;
-  for (int e = 0; e < elements_; ++e) {
-    evaluate_element(state, e, state.tensions_N, false, ev);
-    for (std::size_t i = 0; i < l.size(); ++i) l[i] += ev.lengths_m[i];
-  }
-  return l;
-}
-
 double Discretization::residual_scale(const State& state, double lambda) const {
   double scale = lambda * nodal_dead_load_.cwiseAbs().maxCoeff();
   scale = std::max(scale, lambda * model_->tip_moment_W_Nm.cwiseAbs().maxCoeff());

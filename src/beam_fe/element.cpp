@@ -114,6 +114,19 @@ void add_quadratic_term_hessian(Matrix3d& H, const Vector3d& x, double t2, doubl
   H += g * (v * w.transpose() + w * v.transpose() - 2.0 * vw * Matrix3d::Identity());
 }
 
+/// The element interpolation at a Gauss point: y' = sum_a N_a' y_a, psi = sum_a N_a psi_a,
+/// psi' = sum_a N_a' psi_a (N, dN = dN/ds of the n nodes).
+template <int n>
+void interpolate(const double* N, const double* dN, const std::array<Vector3d, n>& y,
+                 const std::array<Vector3d, n>& psi, Vector3d& yp, Vector3d& ps, Vector3d& pp) {
+  yp = ps = pp = Vector3d::Zero();
+  for (int a = 0; a < n; ++a) {
+    yp += dN[a] * y[a];
+    ps += N[a] * psi[a];
+    pp += dN[a] * psi[a];
+  }
+}
+
 template <int kOrder>
 void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
                     const std::vector<double>& weight, double h_m_, const State& state, int e,
@@ -185,12 +198,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     }
     double dN[3];
     for (int a = 0; a < n; ++a) dN[a] = dN_dxi[a] * 2.0 / h_m_;
-    Vector3d yp = Vector3d::Zero(), ps = Vector3d::Zero(), pp = Vector3d::Zero();
-    for (int a = 0; a < n; ++a) {
-      yp += dN[a] * y[a];
-      ps += N[a] * psi[a];
-      pp += dN[a] * psi[a];
-    }
+    Vector3d yp, ps, pp;
+    interpolate<n>(N, dN, y, psi, yp, ps, pp);
     // Strains and their psi-derivatives: nu = exp(psi)^T y', omega = Jr(psi) psi'.
     const double t2 = ps.squaredNorm();
     const CoefficientJet jet = coefficient_jet(t2);
@@ -378,6 +387,52 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   out.tangent = K;
 }
 
+/// The element's share of each string length alone: the arithmetic of element_kernel's
+/// lengths_m (the same nodal map, strains and Eq. (19) integrand, bit for bit) without the
+/// stresses, gradients and tangent (make_result needs the lengths only).
+template <int kOrder>
+void element_string_lengths(const rod::RodModel& model, const std::vector<double>& xi,
+                            const std::vector<double>& weight, double h_m_, const State& state,
+                            int e, std::vector<double>& lengths_m) {
+  constexpr int n = kOrder + 1;
+  constexpr int order_ = kOrder;
+  const int first = e * order_;
+  const int ref = order_ == 1 ? 0 : 1;
+  const Eigen::Quaterniond q_ref = state.q_WB[first + ref];
+  const Matrix3d R_ref = q_ref.toRotationMatrix();
+  const std::size_t n_act = model.actuators.size();
+  const double s_mid_m = state.s_m[first] + 0.5 * h_m_;
+  std::array<Vector3d, n> y, psi;
+  for (int a = 0; a < n; ++a) {
+    y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
+    psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
+  }
+  std::vector<double> element_share(n_act, 0.0);
+  double N[3], dN_dxi[3];
+  for (std::size_t g = 0; g < xi.size(); ++g) {
+    shape(order_, xi[g], N, dN_dxi);
+    const double wj = weight[g] * 0.5 * h_m_;
+    const double s_m = state.s_m[first] + 0.5 * (xi[g] + 1.0) * h_m_;
+    double dN[3];
+    for (int a = 0; a < n; ++a) dN[a] = dN_dxi[a] * 2.0 / h_m_;
+    Vector3d yp, ps, pp;
+    interpolate<n>(N, dN, y, psi, yp, ps, pp);
+    const double t2 = ps.squaredNorm();
+    const CoefficientJet jet = coefficient_jet(t2);
+    const so3::Coefficients<double>& k0 = jet.f;
+    // [Pawlowski2019] Eq. (19): q = nu + omega x r + r', nu = exp(psi)^T y', omega = Jr(psi) psi'.
+    const Vector3d nu = rotation_operator(ps, t2, -k0.a, k0.b, yp);
+    const Vector3d omega = rotation_operator(ps, t2, -k0.b, k0.c, pp);
+    for (std::size_t i = 0; i < n_act; ++i) {
+      const rod::Actuator& a = model.actuators[i];
+      if (!(a.span_start_m() < s_mid_m && s_mid_m < a.span_end_m(model.length_m))) continue;
+      const Vector3d q = nu + omega.cross(a.routing.r(s_m)) + a.routing.dr(s_m);
+      element_share[i] += wj * q.norm();
+    }
+  }
+  for (std::size_t i = 0; i < n_act; ++i) lengths_m[i] += element_share[i];
+}
+
 }  // namespace
 
 ElementEvaluation Discretization::element(const State& state, int e,
@@ -397,6 +452,19 @@ void Discretization::evaluate_element(const State& state, int e,
     element_kernel<2>(*model_, quad_.xi, quad_.weight, element_h_m_[static_cast<std::size_t>(e)],
                       state, e, tensions_N, with_tangent, out);
   }
+}
+
+std::vector<double> Discretization::string_lengths(const State& state) const {
+  std::vector<double> l(model_->actuators.size(), 0.0);
+  for (int e = 0; e < elements_; ++e) {
+    const double h_e = element_h_m_[static_cast<std::size_t>(e)];
+    if (order_ == 1) {
+      element_string_lengths<1>(*model_, quad_.xi, quad_.weight, h_e, state, e, l);
+    } else {
+      element_string_lengths<2>(*model_, quad_.xi, quad_.weight, h_e, state, e, l);
+    }
+  }
+  return l;
 }
 
 std::vector<PointStrain> Discretization::strains(const State& state) const {

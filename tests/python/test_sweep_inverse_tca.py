@@ -109,3 +109,21 @@ def test_sweep_threads_give_the_serial_numbers():
     with pytest.raises(tcasim.InputError) as e:
         tcasim.sweep(scenario, "tca", temperatures_degC=temps, jobs=0)
     assert e.value.key == "jobs"
+
+
+def test_tca_curve_names_its_arguments_in_errors():
+    # The selection of `tcasim tca` (rod::select_tca) under the Python argument names.
+    source = SCENARIO_DIR / "fig5-tcas.json"
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.tca_curve(source, [30], load_g=5)
+    assert (e.value.key, e.value.value) == ("tca", "(missing)")
+    assert "defines 2 TCAs: four-thread, three-thread" in e.value.rule
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.tca_curve(source, [30], load_g=5, tca="two-thread")
+    assert e.value.key == "tca" and "(it has: four-thread, three-thread)" in e.value.rule
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.tca_curve(source, [30], load_g=5, tca="three-thread", f12_form="exact")
+    assert (e.value.key, e.value.rule) == ("f12_form", "must be paper or castigliano")
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.tca_curve(source, [30], load_g=5, tca="three-thread", material="no-such-material")
+    assert e.value.key == "material"
