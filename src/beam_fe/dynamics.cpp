@@ -189,6 +189,11 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
                                            : m.material.viscosity_Pa_s;
   if (eta_max > 0.0) {
     kv = std::make_unique<damping::StrainRateHistory>(*disc_static, m, o.viscosity_Pa_s, ap, h);
+    // The viscous stresses c_e B eps(n+1) - c_e B eps(n) are formed from the strains as the
+    // elastic ones, with c_e B in place of K (c_e B = 56 K on the soft manipulator at dt 1 ms):
+    // their round-off adds to the floor (docs/conventions.md "Beam FE dynamics").
+    const auto [cB_se, cB_bt] = kv->max_added_stiffness();
+    floor = disc_static->round_off_floor(cB_se, cB_bt);
   }
   v = vd = a = VectorXd::Zero(free_dofs);
   tensions.assign(n_act, 0.0);
