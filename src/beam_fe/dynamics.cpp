@@ -458,6 +458,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   bool fresh = !d.factored || !d.opt.reuse_factorization;
   int chord_steps = 0;
   double r_prev = std::numeric_limits<double>::infinity();
+  VectorXd x_prev = x;
   while (true) {
     const VectorXd r = d.evaluate(x, fresh ? &d.K : nullptr);
     if (d.within_tolerance(r, &sum.residual)) break;
@@ -465,7 +466,11 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
       return failed(BeamDynamicsSummary::Status::kNonFinite, "the residual is not finite");
     }
     if (!fresh && (sum.residual > kChordContraction * r_prev || chord_steps >= kMaxChordSteps)) {
-      fresh = true;  // the same x again, with its Jacobian
+      // A chord step that grew the residual is undone: the fresh Jacobian is taken at the
+      // iterate before it (from the grown one a full Newton step can diverge: the released
+      // cantilever at dt 2 ms, t = 0.114 s; docs/conventions.md "Beam FE dynamics").
+      fresh = true;
+      if (chord_steps > 0 && sum.residual > r_prev) x = x_prev;
       continue;
     }
     if (sum.iterations == d.opt.max_iterations) {
@@ -483,6 +488,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     } else {
       ++chord_steps;
     }
+    x_prev = x;
     VectorXd dx = -r;
     if (!d.lu.solve(dx) || !dx.allFinite()) {
       return failed(BeamDynamicsSummary::Status::kNonFinite, "the Newton step is not finite");
