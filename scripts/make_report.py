@@ -341,7 +341,7 @@ KNOWN_TABLES = [
     ("heated_ramp_order.csv", "Rod dynamics: heated manipulator, gap to the static solution against the ramp rate"),
     ("pwm_quasi_static_order.csv", "Rod dynamics: PWM-driven three-TCA rod, gap to the quasi-static tip against "
      "the drive rate"),
-    ("dynamic_crosscheck_summary.csv", "Dynamic cross-check: finest settings per case (pending: not run yet)"),
+    ("dynamic_crosscheck_summary.csv", "Dynamic cross-check: finest settings per case"),
     ("dynamic_dt_study.csv", "Dynamic cross-check: difference and own time errors against dt",
      ["case", "dt_s", "shooting_steps", "fe_elements", "difference_over_L", "at_t_s", "shooting_time_error_over_L",
       "fe_time_error_over_L", "shooting_wall_s", "fe_wall_s"]),

@@ -185,8 +185,11 @@ class Discretization {
   struct Floor {
     double force, moment;
   };
-  /// force = 10 eps nodes max(EA, GA); moment = 10 eps nodes max(EI, GJ)/L + force h.
-  Floor round_off_floor() const;
+  /// force = 10 eps nodes max(EA, GA); moment = 10 eps nodes max(EI, GJ)/L + force h. A
+  /// stiffness the caller adds to the strains' (the dynamics' viscous c_e B: its stresses are
+  /// formed from the same strain differences) enters with the elastic one: max(EA, GA) +
+  /// added_se [N], max(EI, GJ) + added_bt [N m^2].
+  Floor round_off_floor(double added_se_N = 0.0, double added_bt_Nm2 = 0.0) const;
 
   /// The convergence test of Summary::Status::kConverged, row by row.
   bool within_tolerance(const Eigen::VectorXd& r, const State& state, double lambda,

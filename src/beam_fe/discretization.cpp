@@ -312,7 +312,7 @@ double Discretization::residual_scale(const State& state, double lambda) const {
   return scale;
 }
 
-Discretization::Floor Discretization::round_off_floor() const {
+Discretization::Floor Discretization::round_off_floor(double added_se_N, double added_bt_Nm2) const {
   // Strains are differences of nodal values divided by the node spacing L/(nodes - 1), so
   // they carry round-off ~eps (nodes - 1); times the stiffness and a factor 10 for the
   // sums, that is the level below which the assembled residual cannot be resolved
@@ -331,9 +331,9 @@ Discretization::Floor Discretization::round_off_floor() const {
       }
     }
   }
-  const double force = eps_n * K_se;
+  const double force = eps_n * (K_se + added_se_N);
   const double moment =
-      eps_n * K_bt / model_->length_m + force * model_->length_m / (node_count() - 1);
+      eps_n * (K_bt + added_bt_Nm2) / model_->length_m + force * model_->length_m / (node_count() - 1);
   return {force, moment};
 }
 

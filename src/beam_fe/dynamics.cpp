@@ -189,6 +189,11 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
                                            : m.material.viscosity_Pa_s;
   if (eta_max > 0.0) {
     kv = std::make_unique<damping::StrainRateHistory>(*disc_static, m, o.viscosity_Pa_s, ap, h);
+    // The viscous stresses c_e B eps(n+1) - c_e B eps(n) are formed from the strains as the
+    // elastic ones, with c_e B in place of K (c_e B = 56 K on the soft manipulator at dt 1 ms):
+    // their round-off adds to the floor (docs/conventions.md "Beam FE dynamics").
+    const auto [cB_se, cB_bt] = kv->max_added_stiffness();
+    floor = disc_static->round_off_floor(cB_se, cB_bt);
   }
   v = vd = a = VectorXd::Zero(free_dofs);
   tensions.assign(n_act, 0.0);
@@ -453,6 +458,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   bool fresh = !d.factored || !d.opt.reuse_factorization;
   int chord_steps = 0;
   double r_prev = std::numeric_limits<double>::infinity();
+  VectorXd x_prev = x;
   while (true) {
     const VectorXd r = d.evaluate(x, fresh ? &d.K : nullptr);
     if (d.within_tolerance(r, &sum.residual)) break;
@@ -460,7 +466,11 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
       return failed(BeamDynamicsSummary::Status::kNonFinite, "the residual is not finite");
     }
     if (!fresh && (sum.residual > kChordContraction * r_prev || chord_steps >= kMaxChordSteps)) {
-      fresh = true;  // the same x again, with its Jacobian
+      // A chord step that grew the residual is undone: the fresh Jacobian is taken at the
+      // iterate before it (from the grown one a full Newton step can diverge: the released
+      // cantilever at dt 2 ms, t = 0.114 s; docs/conventions.md "Beam FE dynamics").
+      fresh = true;
+      if (chord_steps > 0 && sum.residual > r_prev) x = x_prev;
       continue;
     }
     if (sum.iterations == d.opt.max_iterations) {
@@ -478,6 +488,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     } else {
       ++chord_steps;
     }
+    x_prev = x;
     VectorXd dx = -r;
     if (!d.lu.solve(dx) || !dx.allFinite()) {
       return failed(BeamDynamicsSummary::Status::kNonFinite, "the Newton step is not finite");

@@ -47,7 +47,8 @@ struct DynamicsOptions {
   double rho_inf = 0.9;
   /// Converged when every force row |r_i| <= tolerance F_c and every moment row
   /// |r_i| <= tolerance F_c L (F_c = rod::characteristic_force_N of the loads at t = 0),
-  /// plus the round-off floor of the rows (Discretization::round_off_floor).
+  /// plus the round-off floor of the rows (Discretization::round_off_floor, with the viscous
+  /// stiffness c_e B of Kelvin-Voigt damping added to the elastic one).
   double tolerance = 1e-10;
   int max_iterations = 30;  ///< Newton iterations per time step
   /// Reuse the last factorization of the step Jacobian (chord iterations, across steps) while

@@ -243,6 +243,15 @@ void StrainRateHistory::add_forces(const State& trial, VectorXd& r,
   add_viscous_forces(disc_, trial, sigma_h, cB_, r, K);
 }
 
+std::pair<double, double> StrainRateHistory::max_added_stiffness() const {
+  double se = 0.0, bt = 0.0;
+  for (const Vector6d& c : cB_) {
+    se = std::max(se, c.head<3>().maxCoeff());
+    bt = std::max(bt, c.tail<3>().maxCoeff());
+  }
+  return {se, bt};
+}
+
 void StrainRateHistory::advance(const State& state) {
   const std::vector<Vector6d> e1 = strains(state);
   for (std::size_t k = 0; k < e1.size(); ++k) {

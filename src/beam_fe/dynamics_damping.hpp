@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "beam_fe/beam_fe.hpp"
@@ -47,6 +48,9 @@ class StrainRateHistory {
   void reset(const State& state);
   /// Adds the viscous forces (and their tangent) at the trial state.
   void add_forces(const State& trial, Eigen::VectorXd& r, Eigen::SparseMatrix<double>* K) const;
+  /// Largest entries of the added stiffness c_e B over the points: of c_e B_se [N] and of
+  /// c_e B_bt [N m^2] (for the round-off floor, Discretization::round_off_floor).
+  std::pair<double, double> max_added_stiffness() const;
   /// The step to `state` converged: eps, eps_t, a_eps move to n + 1.
   void advance(const State& state);
 

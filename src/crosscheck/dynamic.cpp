@@ -108,15 +108,6 @@ rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release
 }
 
 std::string fe_dynamics_unsupported(const rod::RodModel& model) {
-  // The FE dynamics runs TCA drives (tcasim simulate --method fe), but at the cross-check's
-  // tolerance (fe_tolerance 1e-12) its Newton iteration stalls near a scaled residual of 4e-11
-  // on the manipulator voltage step, so the dynamic cross-check leaves TCA drives out for now.
-  for (const rod::Actuator& a : model.actuators) {
-    if (a.drive.type == rod::Drive::Type::kTca) {
-      return "dynamic cross-check: actuator '" + a.name +
-             "' has a TCA drive; TCA drives are not cross-checked in dynamics yet";
-    }
-  }
   try {
     DynamicSettings s;
     s.elements = 1;
