@@ -26,7 +26,8 @@
 //   difference falls at about first order (gated in [0.5, 1.5], no agreement gate); a plain
 //   linear ramp does the same (slope jumps), so the tendon pull is a raised cosine.
 //   The electric TCA drives (a voltage step, PWM voltages) switch their input: the difference
-//   falls at 1.7-2.3 (bracket 2 +- 0.35, each method's own error at 2). A case a method does
+//   falls at 1.7-2.3 (bracket 2 +- 0.35: a switched input and a spatial floor near the finest
+//   difference), each method's own error at 2 +- 0.25. A case a method does
 //   not support yet can be a table entry marked pending with the reason (none at present).
 // Gates: the orders above inside their brackets (two-sided), every run converges, agreement
 //   <= 1e-6 L, the cases expected ran.
@@ -42,6 +43,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,8 @@ struct Case {
   int steps = 0;             ///< shooting grid of the dt study (fine enough for the finest dt)
   int elements = 32;         ///< FE quadratic mesh of the dt study
   OrderGate dt_order;        ///< expected order of the difference in dt
+  /// Expected order of each method's own time error |p(dt) - p(dt/2)| (absent: dt_order).
+  std::optional<OrderGate> own_dt_order;
   bool agreement = true;     ///< gate the time-extrapolated difference <= kAgreementOverL L
   /// Also gate the finest difference itself <= kAgreementOverL L (the full run's finest dt; the
   /// quick run's dt is too coarse for it and gates the extrapolated difference only).
@@ -161,10 +165,11 @@ std::vector<Case> suite(bool quick) {
   }
   // Electric TCA drives (damped soft bodies, 1000 Pa s): the voltage switched on at t = 0+ and
   // PWM voltages switching at 0.1 s (duty 0.1) and 0.3 s (duty 0.3). Each method's own time
-  // error falls at 1.94-2.05, their difference at 1.70-2.32: its max sits at the first output
-  // after the switch-on (t = 4 ms), where the temperature rate jumps at t = 0+; bracket 2 +- 0.35.
-  // 64 elements and N 80: the spatial floor (2.9e-9 and 8.6e-9 L extrapolated) stays below the
-  // finest difference (docs/validation.md).
+  // error falls at 1.94-2.05 (gated 2 +- 0.25), their difference at 1.70-2.32 (gated 2 +- 0.35):
+  // the difference's max sits at the first output after the switch-on (t = 4 ms), where the
+  // temperature rate jumps at t = 0+, and the spatial floor (2.9e-9 and 8.6e-9 L, extrapolated
+  // in dt, 64 elements and N 80) is 30-40 % of the finest difference (9.5e-9, 2.2e-8 L), which
+  // bends the last order down (PWM: 1.70; 2.2 with the floor taken off). docs/validation.md.
   auto tca_case = [](const std::string& name, double duration_s, std::vector<int> quadratic) {
     Case c;
     c.name = name;
@@ -174,8 +179,9 @@ std::vector<Case> suite(bool quick) {
     c.steps = 80;
     c.elements = 64;
     c.dt_order = {kTimeOrder, 0.35,
-                  "a switched input: the temperature rate jumps at t = 0+ (and at the PWM edges); "
-                  "the difference peaks right after the switch-on"};
+                  "a switched input (the difference peaks right after the switch-on) and a "
+                  "spatial floor at 30-40 % of the finest difference"};
+    c.own_dt_order = OrderGate{};
     c.h_dt_s = 1e-3;
     c.linear = {4, 8, 16};
     c.quadratic = std::move(quadratic);
@@ -275,9 +281,10 @@ bool dt_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out,
   if (levels >= 3) {
     gate_orders(g, c.name + ": |fe - shooting| against dt", dts, diff, c.dt_order, out.orders,
                 c.name, "difference vs dt");
-    gate_orders(g, c.name + ": shooting's own time error |p(dt) - p(dt/2)|", h_self, sh_self,
-                c.dt_order, out.orders, c.name, "shooting time error vs dt");
-    gate_orders(g, c.name + ": FE's own time error |p(dt) - p(dt/2)|", h_self, fe_self, c.dt_order,
+    const OrderGate own = c.own_dt_order.value_or(c.dt_order);
+    gate_orders(g, c.name + ": shooting's own time error |p(dt) - p(dt/2)|", h_self, sh_self, own,
+                out.orders, c.name, "shooting time error vs dt");
+    gate_orders(g, c.name + ": FE's own time error |p(dt) - p(dt/2)|", h_self, fe_self, own,
                 out.orders, c.name, "fe time error vs dt");
   }
   // Agreement at the finest dt, and the time-extrapolated difference from the two finest dt.
