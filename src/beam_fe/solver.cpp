@@ -392,10 +392,12 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   rod::Result res;
   res.scenario = model.name;
   res.method = "fe";
-  // The mesh's element count (a body that varies along s: aligned to its breakpoints).
-  const int elements = model.uniform_body() && model.interior_knots().empty()
-                           ? options.elements
-                           : Discretization(model, options).element_count();
+  // The mesh's element count (a body that varies along s, string anchors, spline knots or
+  // extra knots: aligned to them, as Discretization's constructor builds it).
+  const bool plain_mesh = model.uniform_body() && model.interior_knots().empty() &&
+                          options.extra_knots_m.empty();
+  const int elements =
+      plain_mesh ? options.elements : Discretization(model, options).element_count();
   res.discretization = {{"elements", elements}, {"order", options.order}};
   res.converged = summary.converged();
   res.status = to_string(summary.status);

@@ -79,7 +79,7 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
     }
     weight_length = rho_A_ref > 0.0 ? mass / rho_A_ref : L;
   }
-  add_anchor_knots();
+  add_string_knots();
 }
 
 void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,

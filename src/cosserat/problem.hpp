@@ -67,8 +67,9 @@ struct RodProblem {
   // knots[piece + 1]] (empty: every string runs everywhere). span_lo, span_hi per actuator.
   std::vector<double> span_lo, span_hi;
   std::vector<std::vector<char>> string_runs;
-  /// Adds the anchors to the knots (called by the constructor).
-  void add_anchor_knots();
+  /// Adds the string anchors and spline routing knots to the knots, and marks the knots where
+  /// the strain jumps (called by the constructor; cosserat/string_jumps.cpp).
+  void add_string_knots();
   bool runs(std::size_t piece, int i) const {
     return string_runs.empty() || string_runs[piece][static_cast<std::size_t>(i)] != 0;
   }

@@ -9,7 +9,7 @@
 
 namespace tcasim::cosserat::internal {
 
-void RodProblem::add_anchor_knots() {
+void RodProblem::add_string_knots() {
   const std::vector<double> anchors = model.anchor_points();
   const std::vector<double> routing = model.routing_knots();
   if (anchors.empty() && routing.empty()) return;
