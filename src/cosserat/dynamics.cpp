@@ -107,17 +107,9 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
       tca_slot[i] = n_tca++;
       tca_actuator.push_back(i);
     }
-    if (a.anchored_inside(model.length_m)) {
-      throw DomainError("rod dynamics: actuator '" + a.name +
-                        "' is anchored inside the body (span_m); dynamics supports strings from "
-                        "base to tip only so far");
-    }
-    if (a.routing.type == rod::Routing::Type::kSpline) {
-      throw DomainError("rod dynamics: actuator '" + a.name +
-                        "' has a spline routing; dynamics supports straight and helix routings "
-                        "only so far");
-    }
-    length_ratio.push_back(a.rest_length_m / model.length_m);
+    // The rest length per unit length of the span (the string's elongation integrates over
+    // its span only).
+    length_ratio.push_back(a.rest_length_m / (a.span_end_m(model.length_m) - a.span_start_m()));
     count.push_back(static_cast<double>(a.count));
   }
   if (n_tca > kMaxTcas) {
@@ -139,6 +131,11 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     if (!uniform || std::abs(i - std::round(i)) > 1e-9 * o.steps) probe_knots.push_back(p.s_m);
   }
   if (!probe_knots.empty()) uniform = false;
+  // Anchors inside the body and spline knots are nodes too.
+  std::vector<double> string_knot_s = model.anchor_points();
+  for (const double s : model.routing_knots()) string_knot_s.push_back(s);
+  string_knots = !string_knot_s.empty();
+  if (string_knots) uniform = false;
   if (uniform) {
     N = o.steps;
     h = L / N;
@@ -148,6 +145,7 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     // A node at every breakpoint; each piece between them in equal steps of at most L / N.
     std::vector<double> knots = dynamics::grid_breakpoints(model, o.viscosity_Pa_s);
     knots.insert(knots.end(), probe_knots.begin(), probe_knots.end());
+    knots.insert(knots.end(), string_knot_s.begin(), string_knot_s.end());
     std::sort(knots.begin(), knots.end());
     knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
     knots.insert(knots.begin(), 0.0);
@@ -164,6 +162,17 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     require(o.intervals == 0 || N % o.intervals == 0, "dynamics.intervals", o.intervals,
             "must be 0 (automatic) or divide the " + std::to_string(N) +
                 " steps of this body's grid (a node at each breakpoint of its profiles)");
+  }
+  if (string_knots) {
+    // Every anchor is a node, so a string runs along a whole step or not at all.
+    step_runs.assign(N, std::vector<char>(n_act, 0));
+    for (int i = 0; i < N; ++i) {
+      const double mid = 0.5 * (s_grid[i] + s_grid[i + 1]);
+      for (int j = 0; j < n_act; ++j) {
+        const rod::Actuator& act = model.actuators[j];
+        step_runs[i][j] = act.span_start_m() < mid && mid < act.span_end_m(L);
+      }
+    }
   }
   sec = dynamics::section_at(model, 0.0, o.viscosity_Pa_s);
   const double a = o.alpha, dt = o.dt_s;
@@ -335,13 +344,12 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
       Vec3 Mb = d.sec.K_bt.cwiseProduct(om0 - d.sec.omega_star);
       for (int i = 0; i < d.n_act; ++i) {
         const rod::Routing& rt = d.model.actuators[i].routing;
+        if (d.tca_slot[i] >= 0) y0[d.kT + d.tca_slot[i]] = sol.tensions_N[i];
+        if (!d.runs(0, i)) continue;  // starts inside the body: no share of the base wrench
         const Vec3 r = rt.r(0.0);
         const Vec3 qh = (e0 + Vec3::UnitZ() + om0.cross(r) + rt.dr(0.0)).normalized();
         double cTi = d.cT[i];
-        if (d.tca_slot[i] >= 0) {
-          y0[d.kT + d.tca_slot[i]] = sol.tensions_N[i];
-          cTi = d.count[i] * sol.tensions_N[i];
-        }
+        if (d.tca_slot[i] >= 0) cTi = d.count[i] * sol.tensions_N[i];
         Nb += cTi * qh;
         Mb += cTi * r.cross(qh);
       }

@@ -120,6 +120,27 @@ struct RodDynamics::Impl {
   std::vector<double> cT;       // count * tension per actuator (tension drives)
   std::vector<double> cT_eval;  // rhs scratch: cT with the TCA tensions of the state
   std::vector<double> length_ratio, count;
+  // Strings anchored inside the body or with spline routings (docs/conventions.md "Rod
+  // dynamics (shooting method)"): the anchors and spline knots are grid nodes; step_runs[i]
+  // says which strings run along RK4 step i (none outside its span), and the routing is read
+  // on the step's side of a knot (a linear spline's direction jumps there).
+  bool string_knots = false;
+  std::vector<std::vector<char>> step_runs;
+  /// Whether actuator a's string runs at stage slot `slot` (the tip slot: the last step).
+  bool runs(int slot, int a) const {
+    return !string_knots || step_runs[static_cast<std::size_t>(std::min(slot / 4, N - 1))]
+                                      [static_cast<std::size_t>(a)] != 0;
+  }
+  /// Arc length and side at which the routing is read at stage slot `slot` (s: the stage's).
+  double routing_s(int slot, double s) const {
+    if (!string_knots) return s;
+    if (slot >= 4 * N) return L;
+    return slot % 4 == 3 ? s_grid[static_cast<std::size_t>(slot / 4 + 1)]
+                         : (slot % 4 == 0 ? s_grid[static_cast<std::size_t>(slot / 4)] : s);
+  }
+  rod::Side routing_side(int slot) const {
+    return slot >= 4 * N || slot % 4 == 3 ? rod::Side::kLeft : rod::Side::kRight;
+  }
   double F_c = 1.0;
   Eigen::VectorXd scale;  // per state component (D)
   // Per slot: history of the current step, data of the last evaluation (trial), of the

@@ -30,6 +30,13 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   std::vector<double>& cTl = cT_eval;
   cTl = cT;
   for (int j = 0; j < n_tca; ++j) cTl[tca_actuator[j]] = count[tca_actuator[j]] * y[kT + j];
+  // A string outside its span carries nothing here; the routing on the slot's side of a knot.
+  if (string_knots) {
+    for (int i = 0; i < n_act; ++i)
+      if (!runs(slot, i)) cTl[i] = 0.0;
+  }
+  const double s_r = routing_s(slot, s);
+  const rod::Side side = routing_side(slot);
   bool strings = false;
   for (int i = 0; i < n_act; ++i) strings = strings || cTl[i] != 0.0;
   Vec3 e, om;
@@ -54,7 +61,7 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
       for (int i = 0; i < n_act; ++i) {
         if (cTl[i] == 0.0) continue;
         const rod::Routing& rt = model.actuators[i].routing;
-        const Vec3 r = rt.r(s), dr = rt.dr(s);
+        const Vec3 r = rt.r(s_r, side), dr = rt.dr(s_r, side);
         const Vec3 qi = e + Vec3::UnitZ() + om.cross(r) + dr;
         const double qn = qi.norm();
         const Vec3 qh = qi / qn;
@@ -101,8 +108,12 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   dy.segment<3>(kQ) = e_t - om.cross(q) + w.cross(nu);
   dy.segment<3>(kW) = om_t - om.cross(w);
   for (int i = 0; i < n_act; ++i) {
+    if (!runs(slot, i)) {
+      dy[kDelta + i] = 0.0;
+      continue;
+    }
     const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 qi = nu + om.cross(rt.r(s)) + rt.dr(s);
+    const Vec3 qi = nu + om.cross(rt.r(s_r, side)) + rt.dr(s_r, side);
     dy[kDelta + i] = qi.norm() - length_ratio[i];
   }
   if (n_tca > 0) dy.segment(kT, n_tca).setZero();  // T_j' = 0: one tension along the string
@@ -141,9 +152,10 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   Fx.block<3, 3>(kQ, 3) = hat(q);
   Fx.block<3, 3>(kW, 3) = c * I + hat(w);
   for (int i = 0; i < n_act; ++i) {
+    if (!runs(slot, i)) continue;
     const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 r = rt.r(s);
-    const Vec3 qi = nu + om.cross(r) + rt.dr(s);
+    const Vec3 r = rt.r(s_r, side);
+    const Vec3 qi = nu + om.cross(r) + rt.dr(s_r, side);
     const Vec3 qh = qi.normalized();
     Fx.block<1, 3>(kDelta + i, 0) = qh.transpose();
     Fx.block<1, 3>(kDelta + i, 3) = r.cross(qh).transpose();
@@ -152,9 +164,10 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   // r_i x qh_i) from the constitutive law.
   for (int j = 0; j < n_tca; ++j) {
     const int i = tca_actuator[j];
+    if (!runs(slot, i)) continue;
     const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 r = rt.r(s);
-    const Vec3 qh = (nu + om.cross(r) + rt.dr(s)).normalized();
+    const Vec3 r = rt.r(s_r, side);
+    const Vec3 qh = (nu + om.cross(r) + rt.dr(s_r, side)).normalized();
     Vec6 g;
     g << qh, r.cross(qh);
     Aj.col(kT + j) += Fx * (Z * (-count[i] * g));
