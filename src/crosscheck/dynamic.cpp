@@ -82,12 +82,7 @@ beam_fe::DynamicsOptions fe_options(const rod::RodModel& model, const DynamicSet
   o.rho_inf = s.rho_inf;
   o.tolerance = s.fe_tolerance;
   o.max_iterations = s.max_iterations;
-  if (!model.material.viscosity_profile.is_constant()) {
-    throw DomainError(
-        "FE dynamics: body.material.viscosity_Pa_s varies along s; the FE dynamics takes a "
-        "constant viscosity so far");
-  }
-  o.viscosity_Pa_s = model.material.viscosity_Pa_s;
+  // viscosity_Pa_s unset: the model's, a constant or a profile along s (as the shooting run).
   o.tip_mass_kg = model.tip_mass_kg;
   return o;
 }
