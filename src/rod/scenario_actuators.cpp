@@ -39,12 +39,25 @@ Section narrowest_section(const Section& s) {
   return n;
 }
 
+/// The section's outline at s (at a jump: the narrower of the two sides), for the offset
+/// check of a routing whose offset varies along s.
+Section outline_at(const Section& s, double s_m) {
+  if (!s.varies()) return s;
+  Section n = s;
+  const SectionProperties l = s.properties_at(s_m, Side::kLeft);
+  const SectionProperties r = s.properties_at(s_m, Side::kRight);
+  n.width_m = std::min(l.width_m, r.width_m);
+  n.height_m = std::min(l.height_m, r.height_m);
+  return n;
+}
+
 /// Samples per cubic piece at which the spline is checked against the section edge.
 constexpr int kSplineEdgeSamples = 32;
 
 /// `type: "spline"` (docs/scenario-format.md "General routing and string extent"): knots
 /// strictly increasing inside [0, L], one offset per knot, every knot (and, for a cubic,
-/// samples between them) inside the section.
+/// samples between them; for a linear one, the section's breakpoints between them) inside
+/// the section at its own s.
 Routing parse_spline(const json& j, const std::string& path, const Section& section,
                      double length_m) {
   const Obj o(j, path, {"type", "s_m", "offset_m", "interpolation"});
@@ -85,15 +98,26 @@ Routing parse_spline(const json& j, const std::string& path, const Section& sect
     const Eigen::Vector3d x = r.r(sk, Side::kLeft);
     const double dist = x.head<2>().norm();
     if (!(dist > 0.0)) return;
-    require(dist <= *edge_distance(section, x.x(), x.y()), where, shown,
+    const Section local = outline_at(section, sk);
+    require(dist <= *edge_distance(local, x.x(), x.y()), where, shown,
             fmt::format("puts the string outside the body section at s = {} m: {} m from the "
                         "centerline, the edge is at {} m in that direction",
-                        format_value(sk), dist, section.half_extent_m(x.x(), x.y())));
+                        format_value(sk), dist, local.half_extent_m(x.x(), x.y())));
   };
   for (std::size_t i = 0; i < r.knot_s_m.size(); ++i) {
     check(r.knot_s_m[i], fmt::format("{}[{}]", o.key("offset_m"), i), show(p[i]));
   }
-  if (r.linear) return r;  // straight pieces between points inside a convex section
+  if (r.linear) {
+    // A straight piece inside a convex section whose size is linear in s between two checked
+    // points stays inside (distance convex, edge linear): the section's breakpoints in between
+    // are checked too.
+    for (const Profile* pr : {&section.width_profile, &section.height_profile}) {
+      for (const double sb : pr->breakpoints()) {
+        if (sb > r.knot_s_m.front() && sb < r.knot_s_m.back()) check(sb, o.key("offset_m"), show(p));
+      }
+    }
+    return r;
+  }
   for (std::size_t i = 0; i + 1 < r.knot_s_m.size(); ++i) {
     for (int k = 1; k < kSplineEdgeSamples; ++k) {
       check(r.knot_s_m[i] + (r.knot_s_m[i + 1] - r.knot_s_m[i]) * k / kSplineEdgeSamples,
@@ -103,10 +127,12 @@ Routing parse_spline(const json& j, const std::string& path, const Section& sect
   return r;
 }
 
-Routing parse_routing(const json& j, const std::string& path, const Section& section,
+Routing parse_routing(const json& j, const std::string& path, const Section& body_section,
                       double length_m) {
   const std::string type = peek_choice(j, path, "type", {"straight", "helix", "spline"});
-  if (type == "spline") return parse_spline(j, path, section, length_m);
+  if (type == "spline") return parse_spline(j, path, body_section, length_m);
+  // A constant offset (or radius) must fit the narrowest section along the body.
+  const Section section = narrowest_section(body_section);
   Routing r;
   if (type == "straight") {
     const Obj o(j, path, {"type", "offset_m"});
@@ -338,8 +364,8 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
               {"name", "comment", "routing", "count", "drive", "pre_elongation_m", "span_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
-  a.routing = parse_routing(o.required("routing"), o.key("routing"),
-                            narrowest_section(model.section), model.length_m);
+  a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section,
+                            model.length_m);
   if (o.has("count")) {
     // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
     // possibly); 1e9 or 2.0 are floats, which are refused.

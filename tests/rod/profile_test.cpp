@@ -164,6 +164,23 @@ TEST(ProfileScenario, BadProfilesAreRejectedNamingKeyAndRule) {
   expect_rejected(d, "actuators[0].routing.offset_m", "lies outside the body section");
   d["actuators"][0]["routing"]["offset_m"] = {0.002, 0.0};
   EXPECT_NO_THROW((void)parse_scenario(d));
+  // A spline is held against the section at its own s: converging with the taper (4 mm at
+  // the 10 mm base to 1.5 mm at the 4 mm tip) it fits, though not the narrowest section.
+  d["actuators"][0]["routing"] = json::parse(R"({"type": "spline", "s_m": [0.0, 0.2],
+      "offset_m": [[0.004, 0.0], [0.0015, 0.0]]})");
+  EXPECT_NO_THROW((void)parse_scenario(d));
+  d["actuators"][0]["routing"]["offset_m"] = {{0.0051, 0.0}, {0.0015, 0.0}};  // base radius 5 mm
+  expect_rejected(d, "actuators[0].routing.offset_m[0]", "outside the body section at s = 0 m");
+  // Diverging from the axis toward the narrow tip (radius 2 mm there).
+  d["actuators"][0]["routing"]["offset_m"] = {{0.0, 0.0}, {0.0019, 0.0}};
+  EXPECT_NO_THROW((void)parse_scenario(d));
+  d["actuators"][0]["routing"]["offset_m"] = {{0.0, 0.0}, {0.0021, 0.0}};
+  expect_rejected(d, "actuators[0].routing.offset_m[1]", "outside the body section at s = 0.2 m");
+  // A linear spline past a neck of the section (a breakpoint between its two points).
+  d["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.1, 0.2}}, {"values", {0.01, 0.004, 0.01}}};
+  d["actuators"][0]["routing"] = json::parse(R"({"type": "spline", "interpolation": "linear",
+      "s_m": [0.0, 0.2], "offset_m": [[0.003, 0.0], [0.003, 0.0]]})");
+  expect_rejected(d, "actuators[0].routing.offset_m", "outside the body section at s = 0.1 m");
   d = body_doc();
   d["body"]["reference_curvature_1_m"] = {0.0, 0.0};
   expect_rejected(d, "body.reference_curvature_1_m", "3 components");
