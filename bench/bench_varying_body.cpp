@@ -59,8 +59,14 @@ int steps_for(bool tapered) {
     const rod::Result r = cosserat::solve(m, rk4(n));
     const double err = (r.tip_position_W_m - ref.tip_position_W_m).norm();
     if (r.converged && err <= kTipTolerance) {
-      std::printf("%s: %d RK4 steps, tip error %.2e m (reference 2048 steps)\n",
-                  tapered ? "tapered" : "uniform", n, err);
+      // The cost of one cold solve at these steps: Newton iterations, IVPs, continuation steps.
+      cosserat::ShootingSolver solver(m, rk4(n));
+      cosserat::Solution sol;
+      const cosserat::Summary s = solver.solve(cosserat::Actuation::from_model(m), sol);
+      std::printf("%s: %d RK4 steps, tip error %.2e m (reference 2048 steps); cold solve: %d "
+                  "Newton iterations, %d IVPs, %d continuation steps\n",
+                  tapered ? "tapered" : "uniform", n, err, s.iterations, s.ivp_count,
+                  s.continuation_steps);
       return n;
     }
   }
