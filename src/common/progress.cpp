@@ -35,20 +35,23 @@ ProgressReporter::ProgressReporter(std::FILE* stream, std::string label, std::si
 void ProgressReporter::update(std::size_t done) {
   const auto now = std::chrono::steady_clock::now();
   const bool last = done >= total_;
+  if (!interactive_) {
+    // A line when another line_fraction of the total is done, line_seconds have passed, or at the
+    // end; nothing else (no formatting, no flush) otherwise, since callers such as the sweep's
+    // threads update after every point under a shared lock.
+    const double step = options_.line_fraction * static_cast<double>(total_);
+    const bool fraction_due = static_cast<double>(done - last_line_done_) >= step;
+    const bool time_due = seconds_between(last_line_, now) >= options_.line_seconds;
+    if (!(last || fraction_due || time_due)) return;
+    last_line_ = now;
+    last_line_done_ = done;
+  }
   const std::string text = fmt::format("{}: {}/{} {}, {:.2f} s", label_, done, total_, unit_,
                                        seconds_between(start_, now));
   if (interactive_) {
     fmt::print(stream_, "\r{}{}", text, last ? "\n" : "");
   } else {
-    // A line when another line_fraction of the total is done, line_seconds have passed, or at the
-    // end.
-    const double step = options_.line_fraction * static_cast<double>(total_);
-    const bool fraction_due = static_cast<double>(done - last_line_done_) >= step;
-    const bool time_due = seconds_between(last_line_, now) >= options_.line_seconds;
-    if (!(last || fraction_due || time_due)) return;
     fmt::print(stream_, "{}\n", text);
-    last_line_ = now;
-    last_line_done_ = done;
   }
   std::fflush(stream_);
 }

@@ -1,0 +1,27 @@
+#pragma once
+/// The BLAS library's own thread pool in a tcasim program. Debian's OpenBLAS (the pthread
+/// build that SuiteSparse pulls in) starts nproc - 1 server threads as soon as it is loaded,
+/// before main(), and lets each spin (sched_yield in a loop) for 2^28 time-stamp ticks, about
+/// 0.1 s, before it sleeps. tcasim's factorizations are small and its parallel work runs on its
+/// own threads (`tcasim sweep --jobs N`), so that spinning thread only takes a core away from
+/// them: in a 1000-point shooting sweep (about 0.1 s of work) it ate most of one of two cores.
+#include <string>
+
+namespace tcasim {
+
+/// What limit_blas_threads() found and did.
+struct BlasThreads {
+  bool openblas = false;  ///< OpenBLAS's thread controls are linked into the process
+  bool stopped = false;   ///< its thread pool was set to one thread and its server threads ended
+  std::string reason;     ///< why nothing was done (empty when stopped)
+};
+
+/// Makes OpenBLAS single-threaded and ends its (idle, spinning) server threads, unless the
+/// environment variable OPENBLAS_NUM_THREADS is set (then the user's choice stands). Does
+/// nothing without OpenBLAS (reference BLAS, no BLAS at all). The symbols are looked up at run
+/// time, so no OpenBLAS header or link is needed. Call it early in main(), before any other
+/// thread exists; results do not change (OpenBLAS threads only split whole blocks of a product,
+/// and the matrices tcasim factorizes are below its threading threshold anyway).
+BlasThreads limit_blas_threads();
+
+}  // namespace tcasim
