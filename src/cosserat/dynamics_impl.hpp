@@ -65,9 +65,15 @@ struct RodDynamics::Impl {
   /// the stage's strains and velocities are written to trial[slot]. With A: the Jacobian
   /// df/dy (D x D). False when the section's constitutive solve fails or y is not finite.
   bool rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy, Eigen::MatrixXd* A);
+  /// The right-hand side of rhs() without the Jacobian, on raw arrays of D doubles and without
+  /// allocations (the residual-only path of evaluate()). Strings under tension (the section's
+  /// constitutive solve with the strings) are passed on to rhs().
+  bool rhs_residual(double s, const double* y, int slot, double* dy);
   /// Integrates interval k from y (its S RK4 steps), writing the grid states; Phi: the
   /// sensitivity dy_end/dy0 (D x D) when non-null.
   bool integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi);
+  /// integrate_interval without sensitivities, by rhs_residual() (y: D doubles, in place).
+  bool integrate_interval_residual(int k, double* y);
   /// State at node k from the unknowns z.
   void node_state(const Eigen::VectorXd& z, int k, Eigen::VectorXd& y) const;
   /// Scaled residual at z; with `jacobian`, also the scaled Jacobian into J_.
@@ -122,6 +128,7 @@ struct RodDynamics::Impl {
   std::vector<double> length_ratio, count;
   double F_c = 1.0;
   Eigen::VectorXd scale;  // per state component (D)
+  Eigen::ArrayXd inv_scale_;  // 1 / scale
   // Per slot: history of the current step, data of the last evaluation (trial), of the
   // last two converged steps and the time derivative at the last one.
   std::vector<dynamics::PointRates> hist, cur_t;
@@ -146,6 +153,10 @@ struct RodDynamics::Impl {
   bool pattern_analyzed = false, lu_valid = false;
   bool dense = false;  // unknowns() <= kDenseUnknowns: dense LU instead of SparseLU
   Eigen::MatrixXd J_dense_;
+  // Residual-only path: scratch states (D each) and each actuator's routing r, r' at every
+  // stage slot ([slot * n_act + i]).
+  Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
+  std::vector<internal::Vec3> slot_r_, slot_dr_;
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
   double lu_c0 = -1.0;
   std::vector<Eigen::Triplet<double>> triplets_;
