@@ -214,6 +214,10 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     }
     slot_sec[4 * N] = dynamics::section_at(model, L, o.viscosity_Pa_s, rod::Side::kLeft);
   }
+  if (o.scheme == DynamicsOptions::SpatialScheme::kEuler) {
+    stages = 1;
+    stage_b = kEulerB;
+  }
   dense = unknowns() <= kDenseUnknowns;
   const int n_slots = slots();
   hist.assign(n_slots, {});

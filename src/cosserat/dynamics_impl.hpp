@@ -42,6 +42,8 @@ struct PointRates {
 constexpr double kStageC[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageA[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+/// DynamicsOptions::SpatialScheme::kEuler: one stage (slot 4 i), weight 1.
+constexpr double kEulerB[4] = {1.0, 0.0, 0.0, 0.0};
 /// Up to this many unknowns the Newton system is factorized densely (partial pivoting):
 /// faster than SparseLU at that size, the same solution.
 constexpr int kDenseUnknowns = 300;
@@ -105,6 +107,10 @@ struct RodDynamics::Impl {
   std::vector<dynamics::SectionAt> slot_sec;
   double tip_mass_kg = 0.0;  // options' or the model's
   int n_act = 0, D = 0, N = 0, M = 0, S = 0;
+  // Stages per step along s and their weights (RK4: 4 and kStageB; forward Euler: 1 and
+  // kEulerB); a step keeps 4 stage slots either way.
+  int stages = 4;
+  const double* stage_b = dynamics::kStageB;
   // TCA strings: their tensions are states T_j (constant along s) at kT + j, unknowns at the
   // base, fixed by the TCA law at the tip; tca_actuator[j] is the actuator of T_j and
   // tca_slot[i] the j of actuator i (-1: tension drive).

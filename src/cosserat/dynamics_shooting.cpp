@@ -24,7 +24,7 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
     const double s = s_grid[i], hs = step_length(i);
     acc.setZero();
     if (Phi) dacc.setZero();
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < stages; ++j) {
       if (j == 0) {
         Y = y;
         if (Phi) dY = *Phi;
@@ -34,10 +34,10 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
       }
       if (!rhs(s + kStageC[j] * hs, Y, 4 * i + j, kj, Phi ? &A : nullptr)) return false;
       if (!std::isfinite(kj.sum())) return false;
-      acc += kStageB[j] * kj;
+      acc += stage_b[j] * kj;
       if (Phi) {
         dK.noalias() = A * dY;
-        dacc += kStageB[j] * dK;
+        dacc += stage_b[j] * dK;
       }
     }
     y += hs * acc;
@@ -57,9 +57,9 @@ bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
     std::copy(y, y + D, grid[i].data());
     std::copy(y, y + D, Y);
     const double s = s_grid[i], hs = step_length(i);
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < stages; ++j) {
       if (!rhs_residual(s + kStageC[j] * hs, Y, 4 * i + j, kj)) return false;
-      const double b = kStageB[j];
+      const double b = stage_b[j];
       double sum = 0.0;
       if (j == 0) {
         for (int c = 0; c < D; ++c) acc[c] = b * kj[c];
@@ -68,7 +68,7 @@ bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
       }
       for (int c = 0; c < D; ++c) sum += kj[c];
       if (!std::isfinite(sum)) return false;
-      if (j < 3) {
+      if (j + 1 < stages) {
         const double a = kStageA[j + 1] * hs;
         for (int c = 0; c < D; ++c) Y[c] = y[c] + a * kj[c];
       }
