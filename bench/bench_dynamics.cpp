@@ -156,7 +156,7 @@ void BM_SteelCantilever25sCoarse(benchmark::State& state) {
   state.counters["spatial_error_m"] = max_distance(tip, ref);
   state.counters["euler40_spatial_error_m"] = euler40;
 }
-BENCHMARK(BM_SteelCantilever25sCoarse)->Arg(20)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SteelCantilever25sCoarse)->Arg(10)->Arg(20)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 /// The circular manipulator with the voltage switched on at t = 0+ (as validate_dynamics) and
 /// Kelvin-Voigt viscosity eta [Pa s] (0: none, as shipped).
