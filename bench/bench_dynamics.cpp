@@ -5,7 +5,13 @@
 //   simulated seconds per CPU second; s_per_step = CPU seconds per time step; iterations and
 //   jacobians per time step; spatial_error_m = max |tip(N) - tip(N = 160)| over the simulated
 //   second (the same dt: the error of the spatial scheme alone).
+// - BM_ReleasedSteelCantileverEuler: the same with forward Euler along s (first order;
+//   DynamicsOptions::SpatialScheme::kEuler), its spatial_error_m against RK4 at N = 160.
 // - BM_SteelCantilever25s: the same at N = 40 over 25 s (the setting of [Till2019]'s example).
+// - BM_SteelCantilever25sCoarse: the same 25 s at N RK4 steps (argument). Counters as above,
+//   with spatial_error_m = max |tip(N) - tip(N = 160)| over the 25 s, and
+//   euler40_spatial_error_m the same for forward Euler along s at N = 40 (a first-order spatial
+//   scheme on [Till2019]'s grid; DynamicsOptions::SpatialScheme::kEuler).
 // - BM_VoltageStep10s: a voltage step (0 -> 0.714 V at t = 0+) on the paper's circular
 //   manipulator (validation/scenarios/circular-manipulator-voltage.json; argument: viscosity
 //   eta [Pa s], 1000 as in validate_dynamics: undamped, the rod whips and a step fails after
@@ -41,9 +47,12 @@ struct Work {
   }
 };
 
-std::vector<Eigen::Vector3d> run(int n, int time_steps = kTimeSteps, Work* work = nullptr) {
+std::vector<Eigen::Vector3d> run(
+    int n, int time_steps = kTimeSteps, Work* work = nullptr,
+    DynamicsOptions::SpatialScheme scheme = DynamicsOptions::SpatialScheme::kRk4) {
   const rod::RodModel m = testing::steel_cantilever();
   DynamicsOptions o;
+  o.scheme = scheme;
   o.steps = n;
   o.dt_s = kDt;
   o.alpha = -0.2;
@@ -71,9 +80,18 @@ void set_counters(benchmark::State& state, const Work& w, int time_steps, double
   state.counters["jacobians_per_step"] = static_cast<double>(w.jacobians) / steps;
 }
 
-double spatial_error(int n) {
+/// max over time of |a - b| (HUGE_VAL when a run failed before the end).
+double max_distance(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  if (a.size() != b.size()) return HUGE_VAL;
+  double e = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) e = std::max(e, (a[k] - b[k]).norm());
+  return e;
+}
+
+double spatial_error(int n,
+                     DynamicsOptions::SpatialScheme scheme = DynamicsOptions::SpatialScheme::kRk4) {
   static const std::vector<Eigen::Vector3d> ref = run(160);
-  const std::vector<Eigen::Vector3d> tip = run(n);
+  const std::vector<Eigen::Vector3d> tip = run(n, kTimeSteps, nullptr, scheme);
   if (tip.size() != ref.size()) return HUGE_VAL;
   double e = 0.0;
   for (std::size_t k = 0; k < tip.size(); ++k) e = std::max(e, (tip[k] - ref[k]).norm());
@@ -95,6 +113,20 @@ void BM_ReleasedSteelCantilever(benchmark::State& state) {
 }
 BENCHMARK(BM_ReleasedSteelCantilever)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
+void BM_ReleasedSteelCantileverEuler(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Work w;
+  for (auto _ : state) {
+    const std::vector<Eigen::Vector3d> tip =
+        run(n, kTimeSteps, &w, DynamicsOptions::SpatialScheme::kEuler);
+    benchmark::DoNotOptimize(tip.data());
+    if (static_cast<int>(tip.size()) != kTimeSteps) state.SkipWithError("a time step failed");
+  }
+  set_counters(state, w, kTimeSteps, kDt);
+  state.counters["spatial_error_m"] = spatial_error(n, DynamicsOptions::SpatialScheme::kEuler);
+}
+BENCHMARK(BM_ReleasedSteelCantileverEuler)->Arg(40)->Arg(80)->Arg(160)->Unit(benchmark::kMillisecond);
+
 void BM_SteelCantilever25s(benchmark::State& state) {
   constexpr int kSteps25s = 12500;
   Work w;
@@ -106,6 +138,25 @@ void BM_SteelCantilever25s(benchmark::State& state) {
   set_counters(state, w, kSteps25s, kDt);
 }
 BENCHMARK(BM_SteelCantilever25s)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_SteelCantilever25sCoarse(benchmark::State& state) {
+  constexpr int kSteps25s = 12500;
+  const int n = static_cast<int>(state.range(0));
+  Work w;
+  std::vector<Eigen::Vector3d> tip;
+  for (auto _ : state) {
+    tip = run(n, kSteps25s, &w);
+    benchmark::DoNotOptimize(tip.data());
+    if (static_cast<int>(tip.size()) != kSteps25s) state.SkipWithError("a time step failed");
+  }
+  set_counters(state, w, kSteps25s, kDt);
+  static const std::vector<Eigen::Vector3d> ref = run(160, kSteps25s);
+  static const double euler40 =
+      max_distance(run(40, kSteps25s, nullptr, DynamicsOptions::SpatialScheme::kEuler), ref);
+  state.counters["spatial_error_m"] = max_distance(tip, ref);
+  state.counters["euler40_spatial_error_m"] = euler40;
+}
+BENCHMARK(BM_SteelCantilever25sCoarse)->Arg(10)->Arg(20)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 /// The circular manipulator with the voltage switched on at t = 0+ (as validate_dynamics) and
 /// Kelvin-Voigt viscosity eta [Pa s] (0: none, as shipped).

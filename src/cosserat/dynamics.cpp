@@ -223,6 +223,10 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     }
     slot_sec[4 * N] = dynamics::section_at(model, L, o.viscosity_Pa_s, rod::Side::kLeft);
   }
+  if (o.scheme == DynamicsOptions::SpatialScheme::kEuler) {
+    stages = 1;
+    stage_b = kEulerB;
+  }
   dense = unknowns() <= kDenseUnknowns;
   const int n_slots = slots();
   hist.assign(n_slots, {});
@@ -234,6 +238,20 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
   grid_converged = grid;
   cT.assign(n_act, 0.0);
   scale.resize(D);
+  for (Eigen::VectorXd* v : {&ws_y_, &ws_dy_, &ws_stage_, &ws_k_, &ws_acc_, &ws_node_, &ws_next_}) {
+    v->setZero(D);
+  }
+  slot_r_.resize(static_cast<std::size_t>(n_slots) * n_act);
+  slot_dr_.resize(slot_r_.size());
+  for (int slot = 0; slot < n_slots; ++slot) {
+    // The arc length at which integrate_interval() evaluates the slot (the tip: L).
+    const int i = slot / 4, j = slot % 4;
+    const double s = slot == 4 * N ? L : s_grid[i] + kStageC[j] * step_length(i);
+    for (int act = 0; act < n_act; ++act) {
+      slot_r_[slot * n_act + act] = model.actuators[act].routing.r(s);
+      slot_dr_[slot * n_act + act] = model.actuators[act].routing.dr(s);
+    }
+  }
 }
 
 void RodDynamics::Impl::set_loads(const rod::Loads& loads_in) {
@@ -273,6 +291,7 @@ void RodDynamics::Impl::set_scales() {
   scale.segment<3>(kW).setConstant(rate);
   if (n_act > 0) scale.segment(kDelta, n_act).setConstant(L);
   if (n_tca > 0) scale.segment(kT, n_tca).setConstant(F_c);
+  inv_scale_ = scale.array().inverse();
 }
 Eigen::VectorXd RodDynamics::Impl::predict(int p) const {
   // Newton's backward-difference extrapolation: z(n+1) ~ sum_{j=0..p} (-1)^j C(p+1, j+1) z(n-j).

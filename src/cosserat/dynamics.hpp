@@ -49,6 +49,11 @@ struct DynamicsOptions {
   std::optional<double> viscosity_Pa_s;
   /// Point mass at the tip [kg]. Unset (the default): the model's tip_mass_kg.
   std::optional<double> tip_mass_kg;
+  /// Scheme along s: kRk4 (fourth order, the default), or kEuler (forward Euler, first order,
+  /// on the same grid and history points: only for measuring what a first-order spatial scheme
+  /// such as [Till2019]'s reaches; energies then use the left-point rule).
+  enum class SpatialScheme { kRk4, kEuler };
+  SpatialScheme scheme = SpatialScheme::kRk4;
 };
 
 /// The loads at time t [s] (a simulation's drive: constant, or time profiles).

@@ -42,6 +42,8 @@ struct PointRates {
 constexpr double kStageC[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageA[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+/// DynamicsOptions::SpatialScheme::kEuler: one stage (slot 4 i), weight 1.
+constexpr double kEulerB[4] = {1.0, 0.0, 0.0, 0.0};
 /// Up to this many unknowns the Newton system is factorized densely (partial pivoting):
 /// faster than SparseLU at that size, the same solution.
 constexpr int kDenseUnknowns = 300;
@@ -65,9 +67,15 @@ struct RodDynamics::Impl {
   /// the stage's strains and velocities are written to trial[slot]. With A: the Jacobian
   /// df/dy (D x D). False when the section's constitutive solve fails or y is not finite.
   bool rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy, Eigen::MatrixXd* A);
+  /// The right-hand side of rhs() without the Jacobian, on raw arrays of D doubles and without
+  /// allocations (the residual-only path of evaluate()). Strings under tension (the section's
+  /// constitutive solve with the strings) are passed on to rhs().
+  bool rhs_residual(double s, const double* y, int slot, double* dy);
   /// Integrates interval k from y (its S RK4 steps), writing the grid states; Phi: the
   /// sensitivity dy_end/dy0 (D x D) when non-null.
   bool integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi);
+  /// integrate_interval without sensitivities, by rhs_residual() (y: D doubles, in place).
+  bool integrate_interval_residual(int k, double* y);
   /// State at node k from the unknowns z.
   void node_state(const Eigen::VectorXd& z, int k, Eigen::VectorXd& y) const;
   /// Scaled residual at z; with `jacobian`, also the scaled Jacobian into J_.
@@ -99,6 +107,10 @@ struct RodDynamics::Impl {
   std::vector<dynamics::SectionAt> slot_sec;
   double tip_mass_kg = 0.0;  // options' or the model's
   int n_act = 0, D = 0, N = 0, M = 0, S = 0;
+  // Stages per step along s and their weights (RK4: 4 and kStageB; forward Euler: 1 and
+  // kEulerB); a step keeps 4 stage slots either way.
+  int stages = 4;
+  const double* stage_b = dynamics::kStageB;
   // TCA strings: their tensions are states T_j (constant along s) at kT + j, unknowns at the
   // base, fixed by the TCA law at the tip; tca_actuator[j] is the actuator of T_j and
   // tca_slot[i] the j of actuator i (-1: tension drive).
@@ -143,6 +155,7 @@ struct RodDynamics::Impl {
   }
   double F_c = 1.0;
   Eigen::VectorXd scale;  // per state component (D)
+  Eigen::ArrayXd inv_scale_;  // 1 / scale
   // Per slot: history of the current step, data of the last evaluation (trial), of the
   // last two converged steps and the time derivative at the last one.
   std::vector<dynamics::PointRates> hist, cur_t;
@@ -167,6 +180,10 @@ struct RodDynamics::Impl {
   bool pattern_analyzed = false, lu_valid = false;
   bool dense = false;  // unknowns() <= kDenseUnknowns: dense LU instead of SparseLU
   Eigen::MatrixXd J_dense_;
+  // Residual-only path: scratch states (D each) and each actuator's routing r, r' at every
+  // stage slot ([slot * n_act + i]).
+  Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
+  std::vector<internal::Vec3> slot_r_, slot_dr_;
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
   double lu_c0 = -1.0;
   std::vector<Eigen::Triplet<double>> triplets_;

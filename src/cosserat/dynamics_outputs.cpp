@@ -13,7 +13,7 @@ double RodDynamics::kinetic_energy_J() const {
     for (int j = 0; j < 4; ++j) {
       const PointData& x = d.cur[4 * i + j];
       const dynamics::SectionAt& sec = d.section_of(4 * i + j);
-      T += kStageB[j] * d.step_length(i) * 0.5 *
+      T += d.stage_b[j] * d.step_length(i) * 0.5 *
            (sec.rho_A * x.q.squaredNorm() + x.w.dot(sec.rho_J.cwiseProduct(x.w)));
     }
   }
@@ -28,7 +28,7 @@ double RodDynamics::potential_energy_J() const {
       const PointData& x = d.cur[4 * i + j];
       const dynamics::SectionAt& sec = d.section_of(4 * i + j);
       const Vec3 dom = x.omega - sec.omega_star;
-      U += kStageB[j] * d.step_length(i) *
+      U += d.stage_b[j] * d.step_length(i) *
            (0.5 * x.e.dot(sec.K_se.cwiseProduct(x.e)) + 0.5 * dom.dot(sec.K_bt.cwiseProduct(dom)) -
             (sec.rho_A * d.g_W).dot(x.p));
     }

@@ -176,4 +176,58 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   return true;
 }
 
+bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double* dy) {
+  // Strings under tension: the section's constitutive solve of rhs().
+  bool strings = false;
+  for (int i = 0; i < n_act; ++i) strings = strings || cT[i] != 0.0;
+  for (int j = 0; j < n_tca; ++j) strings = strings || y[kT + j] != 0.0;
+  if (strings) {
+    ws_y_ = Eigen::Map<const Eigen::VectorXd>(y, D);
+    if (!rhs(s, ws_y_, slot, ws_dy_, nullptr)) return false;
+    Eigen::Map<Eigen::VectorXd>(dy, D) = ws_dy_;
+    return true;
+  }
+  // The equations of rhs() without strings: the strains follow the section law directly,
+  //   e = (N - B_se e_h) / (K_se + c0 B_se),  omega = (M + K_bt omega* - B_bt omega_h) / (K_bt + c0 B_bt).
+  const Eigen::Map<const Mat3> R(y + kR);
+  const Eigen::Map<const Vec3> Nb(y + kN), Mb(y + kM), q(y + kQ), w(y + kW);
+  const PointRates& H = hist[slot];
+  const dynamics::SectionAt& sp = section_of(slot);
+  const double c = c0_active;
+  // (in rhs()'s order of operations: the same numbers)
+  const Vec3 Kt_se_inv = (sp.K_se + c * sp.B_se).cwiseInverse();
+  const Vec3 Kt_bt_inv = (sp.K_bt + c * sp.B_bt).cwiseInverse();
+  const Vec3 e = Kt_se_inv.cwiseProduct(Nb - sp.B_se.cwiseProduct(H.e));
+  const Vec3 om = Kt_bt_inv.cwiseProduct(Mb + sp.K_bt.cwiseProduct(sp.omega_star) -
+                                         sp.B_bt.cwiseProduct(H.omega));
+  PointData& X = trial[slot];
+  X.e = e;
+  X.omega = om;
+  X.q = q;
+  X.w = w;
+  X.p = Eigen::Map<const Vec3>(y + kP);
+  const Vec3 nu = e + Vec3::UnitZ();
+  const Vec3 q_t = c * q + H.q, w_t = c * w + H.w;
+  const Vec3 e_t = c * e + H.e, om_t = c * om + H.omega;
+  const Vec3 Jw = sp.rho_J.cwiseProduct(w);
+  Eigen::Map<Vec3>(dy + kP) = R * nu;
+  // R hat(omega), column by column: column j is R (omega x e_j).
+  Eigen::Map<Mat3> dR(dy + kR);
+  dR.col(0) = om.z() * R.col(1) - om.y() * R.col(2);
+  dR.col(1) = om.x() * R.col(2) - om.z() * R.col(0);
+  dR.col(2) = om.y() * R.col(0) - om.x() * R.col(1);
+  const Vec3 f_W = sp.rho_A * g_W;
+  Eigen::Map<Vec3>(dy + kN) = -om.cross(Nb) + sp.rho_A * (w.cross(q) + q_t) - R.transpose() * f_W;
+  Eigen::Map<Vec3>(dy + kM) =
+      -om.cross(Mb) - nu.cross(Nb) + w.cross(Jw) + sp.rho_J.cwiseProduct(w_t);
+  Eigen::Map<Vec3>(dy + kQ) = e_t - om.cross(q) + w.cross(nu);
+  Eigen::Map<Vec3>(dy + kW) = om_t - om.cross(w);
+  for (int i = 0; i < n_act; ++i) {
+    const Vec3 qi = nu + om.cross(slot_r_[slot * n_act + i]) + slot_dr_[slot * n_act + i];
+    dy[kDelta + i] = qi.norm() - length_ratio[i];
+  }
+  for (int j = 0; j < n_tca; ++j) dy[kT + j] = 0.0;
+  return true;
+}
+
 }  // namespace tcasim::cosserat

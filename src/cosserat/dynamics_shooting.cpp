@@ -1,5 +1,6 @@
 // Rod dynamics: RK4 over each shooting interval with its forward sensitivities, the tip
 // balance, and the multiple-shooting residual and Jacobian (assembled and factorized).
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -23,7 +24,7 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
     const double s = s_grid[i], hs = step_length(i);
     acc.setZero();
     if (Phi) dacc.setZero();
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < stages; ++j) {
       if (j == 0) {
         Y = y;
         if (Phi) dY = *Phi;
@@ -33,10 +34,10 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
       }
       if (!rhs(s + kStageC[j] * hs, Y, 4 * i + j, kj, Phi ? &A : nullptr)) return false;
       if (!std::isfinite(kj.sum())) return false;
-      acc += kStageB[j] * kj;
+      acc += stage_b[j] * kj;
       if (Phi) {
         dK.noalias() = A * dY;
-        dacc += kStageB[j] * dK;
+        dacc += stage_b[j] * dK;
       }
     }
     y += hs * acc;
@@ -44,6 +45,41 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
   }
   if (k == M - 1) grid[N] = y;
   return y.allFinite();
+}
+
+bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
+  // integrate_interval()'s RK4 with its numbers (the same operations on each component), on
+  // the scratch states; one pass per stage accumulates the step and forms the next stage state.
+  double* __restrict Y = ws_stage_.data();
+  double* __restrict kj = ws_k_.data();
+  double* __restrict acc = ws_acc_.data();
+  for (int i = k * S; i < (k + 1) * S; ++i) {
+    std::copy(y, y + D, grid[i].data());
+    std::copy(y, y + D, Y);
+    const double s = s_grid[i], hs = step_length(i);
+    for (int j = 0; j < stages; ++j) {
+      if (!rhs_residual(s + kStageC[j] * hs, Y, 4 * i + j, kj)) return false;
+      const double b = stage_b[j];
+      double sum = 0.0;
+      if (j == 0) {
+        for (int c = 0; c < D; ++c) acc[c] = b * kj[c];
+      } else {
+        for (int c = 0; c < D; ++c) acc[c] += b * kj[c];
+      }
+      for (int c = 0; c < D; ++c) sum += kj[c];
+      if (!std::isfinite(sum)) return false;
+      if (j + 1 < stages) {
+        const double a = kStageA[j + 1] * hs;
+        for (int c = 0; c < D; ++c) Y[c] = y[c] + a * kj[c];
+      }
+    }
+    for (int c = 0; c < D; ++c) y[c] += hs * acc[c];
+  }
+  if (k == M - 1) std::copy(y, y + D, grid[N].data());
+  for (int c = 0; c < D; ++c) {
+    if (!std::isfinite(y[c])) return false;
+  }
+  return true;
 }
 
 void RodDynamics::Impl::node_state(const Eigen::VectorXd& zz, int k, Eigen::VectorXd& y) const {
@@ -107,13 +143,14 @@ bool RodDynamics::Impl::tip_residual(const Eigen::VectorXd& y, Eigen::Ref<Eigen:
 bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, bool jacobian) {
   const int n = unknowns();
   r.resize(n);
-  Eigen::VectorXd y(D), y_next(D);
+  Eigen::VectorXd &y = ws_node_, &y_next = ws_next_;
   Eigen::MatrixXd Phi, G;
   if (jacobian) triplets_.clear();
-  const Eigen::ArrayXd inv_scale = scale.array().inverse();
+  const Eigen::ArrayXd& inv_scale = inv_scale_;
   for (int k = 0; k < M; ++k) {
     node_state(zz, k, y);
-    if (!integrate_interval(k, y, jacobian ? &Phi : nullptr)) return false;
+    const bool ok = jacobian ? integrate_interval(k, y, &Phi) : integrate_interval_residual(k, y.data());
+    if (!ok) return false;
     const int row = k * D;  // continuity rows of node k + 1; the tip rows after the last
     const int col0 = k == 0 ? 0 : n0() + (k - 1) * D;
     // Columns of node k's unknowns: (N, M) and the TCA tensions at the base, the whole state
@@ -135,8 +172,8 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
       }
     } else {
       // The tip point's strains (energies, damping history) and the tip residual.
-      Eigen::VectorXd dy(D);
-      if (!rhs(L, y, 4 * N, dy, nullptr)) return false;
+      Eigen::VectorXd& dy = ws_acc_;
+      if (!rhs_residual(L, y.data(), 4 * N, dy.data())) return false;
       if (!tip_residual(y, r.segment(row, n0()), jacobian ? &G : nullptr)) return false;
       if (jacobian) {
         const Eigen::MatrixXd GP = G * Phi;

@@ -94,9 +94,12 @@ TEST(RodDynamics, AStepFromRestUnderUnchangedLoadsStaysAtRest) {
 
 /// Tip after `steps` time steps of the released cantilever (20 g tip weight removed at t = 0,
 /// gravity on) with N grid steps.
-Eigen::Vector3d released_tip(int n, int steps, double dt, double alpha = -0.2) {
+Eigen::Vector3d released_tip(
+    int n, int steps, double dt, double alpha = -0.2,
+    DynamicsOptions::SpatialScheme scheme = DynamicsOptions::SpatialScheme::kRk4) {
   const rod::RodModel m = steel_cantilever();
   DynamicsOptions o;
+  o.scheme = scheme;
   o.steps = n;
   o.dt_s = dt;
   o.alpha = alpha;
@@ -123,6 +126,20 @@ TEST(RodDynamics, TheTimeStepIsFourthOrderInS) {
     err.push_back((released_tip(n, steps, dt) - ref).norm());
   }
   test_support::ExpectOrderInBracket(h, err, 4.0, 0.5);
+}
+
+// The comparison scheme (forward Euler along s) is first order on the same problem.
+TEST(RodDynamics, TheEulerSchemeAlongSIsFirstOrder) {
+  const int steps = 10;
+  const double dt = 2e-3;
+  const Eigen::Vector3d ref = released_tip(160, steps, dt);
+  std::vector<double> h, err;
+  for (const int n : {20, 40, 80}) {
+    h.push_back(0.5 / n);
+    err.push_back(
+        (released_tip(n, steps, dt, -0.2, DynamicsOptions::SpatialScheme::kEuler) - ref).norm());
+  }
+  test_support::ExpectOrderInBracket(h, err, 1.0, 0.5);
 }
 
 // Released cantilever without damping: total energy (kinetic + strain + gravity) never
