@@ -247,9 +247,12 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     // The arc length at which integrate_interval() evaluates the slot (the tip: L).
     const int i = slot / 4, j = slot % 4;
     const double s = slot == 4 * N ? L : s_grid[i] + kStageC[j] * step_length(i);
+    // As rhs() reads them: at a node exactly and on the slot's side of a string knot.
+    const double s_r = routing_s(slot, s);
+    const rod::Side side = routing_side(slot);
     for (int act = 0; act < n_act; ++act) {
-      slot_r_[slot * n_act + act] = model.actuators[act].routing.r(s);
-      slot_dr_[slot * n_act + act] = model.actuators[act].routing.dr(s);
+      slot_r_[slot * n_act + act] = model.actuators[act].routing.r(s_r, side);
+      slot_dr_[slot * n_act + act] = model.actuators[act].routing.dr(s_r, side);
     }
   }
 }

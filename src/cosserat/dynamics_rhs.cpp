@@ -223,6 +223,10 @@ bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double
   Eigen::Map<Vec3>(dy + kQ) = e_t - om.cross(q) + w.cross(nu);
   Eigen::Map<Vec3>(dy + kW) = om_t - om.cross(w);
   for (int i = 0; i < n_act; ++i) {
+    if (!runs(slot, i)) {  // outside its span (as in rhs())
+      dy[kDelta + i] = 0.0;
+      continue;
+    }
     const Vec3 qi = nu + om.cross(slot_r_[slot * n_act + i]) + slot_dr_[slot * n_act + i];
     dy[kDelta + i] = qi.norm() - length_ratio[i];
   }

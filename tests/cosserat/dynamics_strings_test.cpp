@@ -22,8 +22,10 @@ namespace {
 constexpr double kTightTolerance = 1e-12;
 
 /// The steel cantilever of dynamics_models.hpp with the strings of `kind`:
-/// - "anchored": a straight string at x = 0.8 mm over [0, 0.3] (2 N) and one at y = 0.7 mm
-///   over [0.1, 0.4] (1 N, both ends inside the body);
+/// - "anchored": a straight string at x = 0.8 mm over [0, 0.3] (2 N), one at y = 0.7 mm
+///   over [0.1, 0.4] (1 N, both ends inside the body) and a slack one over [0.2, 0.45];
+/// - "slack": two slack straight strings over [0, 0.25] and [0.2, 0.45] (no tension: the
+///   residual-only path; their elongations are the bending's alone);
 /// - "linear": a disk-routed string (linear spline, kinks at 0.2 and 0.35 m, 2 N) and a
 ///   straight one anchored at 0.25 m (1 N);
 /// - "cubic": a cubic spline converging from 0.9 mm to 0.4 mm (2 N), with a slight y drift.
@@ -45,6 +47,18 @@ rod::RodModel steel_with(const std::string& kind) {
                     {"routing", {{"type", "straight"}, {"offset_m", {0.0, 0.7e-3}}}},
                     {"span_m", {0.1, 0.4}},
                     {"drive", tension(1.0)}});
+    // Slack (the residual-only path integrates its elongation over its span alone).
+    acts.push_back({{"name", "slack"},
+                    {"routing", {{"type", "straight"}, {"offset_m", {-0.6e-3, 0.0}}}},
+                    {"span_m", {0.2, 0.45}},
+                    {"drive", tension(0.0)}});
+  } else if (kind == "slack") {
+    for (const double s0 : {0.0, 0.2}) {
+      acts.push_back({{"name", s0 == 0.0 ? "slack-base" : "slack-inner"},
+                      {"routing", {{"type", "straight"}, {"offset_m", {0.0, 0.8e-3}}}},
+                      {"span_m", {s0, s0 + 0.25}},
+                      {"drive", tension(0.0)}});
+    }
   } else if (kind == "linear") {
     acts.push_back({{"name", "disks"},
                     {"routing",
@@ -85,7 +99,7 @@ Solution static_solution(const rod::RodModel& m, const rod::Loads& loads) {
 // counted outside its span, or a kink read on the wrong side, would leave an O(1) or O(h)
 // error).
 TEST(RodDynamicsStrings, AtRestTheyReproduceTheStaticSolverAtOrderFour) {
-  for (const std::string kind : {"anchored", "linear", "cubic"}) {
+  for (const std::string kind : {"anchored", "slack", "linear", "cubic"}) {
     SCOPED_TRACE(kind);
     const rod::RodModel m = steel_with(kind);
     const rod::Loads loads = sag_loads(m, 0.010);
@@ -127,7 +141,7 @@ TEST(RodDynamicsStrings, AtRestTheyReproduceTheStaticSolverAtOrderFour) {
 
 // The static equilibrium stays at rest under unchanged loads.
 TEST(RodDynamicsStrings, AStepFromRestStaysAtRest) {
-  for (const std::string kind : {"anchored", "linear", "cubic"}) {
+  for (const std::string kind : {"anchored", "slack", "linear", "cubic"}) {
     SCOPED_TRACE(kind);
     const rod::RodModel m = steel_with(kind);
     const rod::Loads loads = sag_loads(m, 0.010);
@@ -137,8 +151,11 @@ TEST(RodDynamicsStrings, AStepFromRestStaysAtRest) {
     RodDynamics d(m, o);
     ASSERT_TRUE(d.initialize(loads).converged());
     const Eigen::Vector3d p0 = d.tip_position_W_m();
+    const std::vector<double> e0 = d.elongations_m();
     for (int k = 0; k < 5; ++k) ASSERT_TRUE(d.step(loads).converged());
     EXPECT_LT((d.tip_position_W_m() - p0).norm(), 1e-12 * m.length_m);
+    const std::vector<double> e = d.elongations_m();
+    for (std::size_t i = 0; i < e.size(); ++i) EXPECT_NEAR(e[i], e0[i], 1e-12 * m.length_m) << i;
     EXPECT_LT(d.kinetic_energy_J(), 1e-20);
   }
 }
