@@ -12,9 +12,9 @@
 
 #include "cosserat/dynamics.hpp"
 #include "cosserat/shooting.hpp"
+#include "dynamics_at_rest.hpp"
 #include "dynamics_models.hpp"
 #include "rod/scenario.hpp"
-#include "support/convergence.hpp"
 
 namespace tcasim::cosserat::testing {
 namespace {
@@ -105,33 +105,12 @@ TEST(RodDynamicsStrings, AtRestTheyReproduceTheStaticSolverAtOrderFour) {
     const rod::Loads loads = sag_loads(m, 0.010);
     const Solution ref = static_solution(m, loads);
     const Eigen::Vector3d p_ref = ref.tip_state.head<3>();
-    std::vector<double> h, err;
-    for (const int n : {10, 20, 40, 80}) {
-      DynamicsOptions o;
-      o.steps = n;
-      o.tolerance = kTightTolerance;
-      RodDynamics d(m, o);
-      const std::vector<double>& s = d.grid_s_m();
-      for (const double knot : m.interior_knots()) {
-        EXPECT_NE(std::find(s.begin(), s.end(), knot), s.end()) << "no node at " << knot;
-      }
-      const DynamicsSummary sum = d.initialize(loads);
-      ASSERT_TRUE(sum.converged()) << sum.message;
-      h.push_back(m.length_m / n);
-      err.push_back((d.tip_position_W_m() - p_ref).norm());
-    }
-    std::printf("%s strings at rest:\n%s", kind.c_str(),
-                test_support::convergence_table(h, err).c_str());
-    test_support::ExpectOrderInBracket(h, err, 4.0, 0.5);
-    DynamicsOptions o;
-    o.steps = 320;
-    o.tolerance = kTightTolerance;
-    RodDynamics d(m, o);
-    ASSERT_TRUE(d.initialize(loads).converged());
-    EXPECT_LT((d.tip_position_W_m() - p_ref).norm(), 1e-11 * m.length_m);
+    const auto d = expect_rest_converges_at_order_four(m, loads, p_ref, m.interior_knots(),
+                                                       kind.c_str(), kTightTolerance);
+    ASSERT_TRUE(d);
     // The elongations (path length over the span minus the rest length) are the static
     // solver's.
-    const std::vector<double> e = d.elongations_m();
+    const std::vector<double> e = d->elongations_m();
     ASSERT_EQ(e.size(), ref.elongations_m.size());
     for (std::size_t i = 0; i < e.size(); ++i) {
       EXPECT_NEAR(e[i], ref.elongations_m[i], 1e-11 * m.length_m) << "string " << i;

@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "cosserat/shooting.hpp"
+#include "dynamics_at_rest.hpp"
 #include "dynamics_models.hpp"
 #include "support/convergence.hpp"
 
@@ -184,30 +185,9 @@ TEST(RodDynamics, TaperedRodAtRestReproducesTheStaticSolverAtOrderFour) {
   Solution sol;
   ASSERT_TRUE(ref.solve(loads, sol).converged());
   const Eigen::Vector3d p_ref = sol.tip_state.head<3>();
-  std::vector<double> h, err;
-  for (const int n : {10, 20, 40, 80}) {
-    DynamicsOptions o;
-    o.steps = n;
-    o.tolerance = kTightTolerance;
-    RodDynamics d(m, o);
-    // The jump at s = 0.3 is a grid node.
-    const std::vector<double>& s = d.grid_s_m();
-    ASSERT_EQ(static_cast<int>(s.size()), d.steps() + 1);
-    EXPECT_NE(std::find(s.begin(), s.end(), 0.3), s.end());
-    EXPECT_EQ(s.back(), m.length_m);
-    const DynamicsSummary sum = d.initialize(loads);
-    ASSERT_TRUE(sum.converged()) << sum.message;
-    h.push_back(m.length_m / n);
-    err.push_back((d.tip_position_W_m() - p_ref).norm());
-  }
-  std::printf("tapered rod at rest:\n%s", test_support::convergence_table(h, err).c_str());
-  test_support::ExpectOrderInBracket(h, err, 4.0, 0.5);
-  DynamicsOptions o;
-  o.steps = 320;
-  o.tolerance = kTightTolerance;
-  RodDynamics d(m, o);
-  ASSERT_TRUE(d.initialize(loads).converged());
-  EXPECT_LT((d.tip_position_W_m() - p_ref).norm(), 1e-11 * m.length_m);
+  // The jump at s = 0.3 is a grid node.
+  EXPECT_TRUE(expect_rest_converges_at_order_four(m, loads, p_ref, {0.3}, "tapered rod",
+                                                  kTightTolerance));
 }
 
 // The tapered rod released from its sag: every step converges, the rod moves, the energy
