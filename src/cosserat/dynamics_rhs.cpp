@@ -188,7 +188,8 @@ bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double
     return true;
   }
   // The equations of rhs() without strings: the strains follow the section law directly,
-  //   e = (N - B_se e_h) / (K_se + c0 B_se),  omega = (M + K_bt omega* - B_bt omega_h) / (K_bt + c0 B_bt).
+  //   e = (N - B_se e_h) / (K_se + c0 B_se),
+  //   omega = (M + K_bt omega* - B_bt omega_h) / (K_bt + c0 B_bt).
   const Eigen::Map<const Mat3> R(y + kR);
   const Eigen::Map<const Vec3> Nb(y + kN), Mb(y + kM), q(y + kQ), w(y + kW);
   const PointRates& H = hist[slot];

@@ -149,7 +149,8 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
   const Eigen::ArrayXd& inv_scale = inv_scale_;
   for (int k = 0; k < M; ++k) {
     node_state(zz, k, y);
-    const bool ok = jacobian ? integrate_interval(k, y, &Phi) : integrate_interval_residual(k, y.data());
+    const bool ok =
+        jacobian ? integrate_interval(k, y, &Phi) : integrate_interval_residual(k, y.data());
     if (!ok) return false;
     const int row = k * D;  // continuity rows of node k + 1; the tip rows after the last
     const int col0 = k == 0 ? 0 : n0() + (k - 1) * D;

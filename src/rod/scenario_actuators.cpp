@@ -113,7 +113,9 @@ Routing parse_spline(const json& j, const std::string& path, const Section& sect
     // are checked too.
     for (const Profile* pr : {&section.width_profile, &section.height_profile}) {
       for (const double sb : pr->breakpoints()) {
-        if (sb > r.knot_s_m.front() && sb < r.knot_s_m.back()) check(sb, o.key("offset_m"), show(p));
+        if (sb > r.knot_s_m.front() && sb < r.knot_s_m.back()) {
+          check(sb, o.key("offset_m"), show(p));
+        }
       }
     }
     return r;

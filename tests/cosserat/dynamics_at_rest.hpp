@@ -10,9 +10,24 @@
 #include <vector>
 
 #include "cosserat/dynamics.hpp"
+#include "cosserat/shooting.hpp"
 #include "support/convergence.hpp"
 
 namespace tcasim::cosserat::testing {
+
+/// The static shooting solver with RK8 on `steps` steps at residual `tolerance` (converged to
+/// round-off on these rods; its knots are piece ends, as the dynamics' grid nodes).
+inline Solution static_reference(const rod::RodModel& m, const rod::Loads& loads, int steps,
+                                 double tolerance) {
+  Options so;
+  so.integrator.method = ode::Method::kRk8;
+  so.integrator.steps = steps;
+  so.tolerance = tolerance;
+  ShootingSolver ref(m, so);
+  Solution sol;
+  EXPECT_TRUE(ref.solve(loads, sol).converged());
+  return sol;
+}
 
 /// Runs the ladder (printing its table under `label`) and returns the initialized N = 320
 /// dynamics for further checks (nullptr if an initialization failed).

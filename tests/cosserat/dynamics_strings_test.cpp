@@ -65,7 +65,8 @@ rod::RodModel steel_with(const std::string& kind) {
                      {{"type", "spline"},
                       {"interpolation", "linear"},
                       {"s_m", {0.0, 0.2, 0.35, 0.5}},
-                      {"offset_m", {{0.8e-3, 0.0}, {0.6e-3, 0.2e-3}, {0.5e-3, 0.2e-3}, {0.4e-3, 0.0}}}}},
+                      {"offset_m",
+                       {{0.8e-3, 0.0}, {0.6e-3, 0.2e-3}, {0.5e-3, 0.2e-3}, {0.4e-3, 0.0}}}}},
                     {"drive", tension(2.0)}});
     acts.push_back({{"name", "short"},
                     {"routing", {{"type", "straight"}, {"offset_m", {-0.7e-3, 0.0}}}},
@@ -77,21 +78,11 @@ rod::RodModel steel_with(const std::string& kind) {
                      {{"type", "spline"},
                       {"interpolation", "cubic"},
                       {"s_m", {0.0, 0.15, 0.3, 0.5}},
-                      {"offset_m", {{0.9e-3, 0.0}, {0.75e-3, 0.05e-3}, {0.6e-3, 0.1e-3}, {0.4e-3, 0.1e-3}}}}},
+                      {"offset_m",
+                       {{0.9e-3, 0.0}, {0.75e-3, 0.05e-3}, {0.6e-3, 0.1e-3}, {0.4e-3, 0.1e-3}}}}},
                     {"drive", tension(2.0)}});
   }
   return rod::parse_scenario(doc);
-}
-
-Solution static_solution(const rod::RodModel& m, const rod::Loads& loads) {
-  Options so;
-  so.integrator.method = ode::Method::kRk8;
-  so.integrator.steps = 128;
-  so.tolerance = kTightTolerance;
-  ShootingSolver ref(m, so);
-  Solution sol;
-  EXPECT_TRUE(ref.solve(loads, sol).converged());
-  return sol;
 }
 
 // At rest the dynamic BVP is the static one on the dynamics' grid: with the anchors and knots
@@ -103,7 +94,7 @@ TEST(RodDynamicsStrings, AtRestTheyReproduceTheStaticSolverAtOrderFour) {
     SCOPED_TRACE(kind);
     const rod::RodModel m = steel_with(kind);
     const rod::Loads loads = sag_loads(m, 0.010);
-    const Solution ref = static_solution(m, loads);
+    const Solution ref = static_reference(m, loads, 128, kTightTolerance);
     const Eigen::Vector3d p_ref = ref.tip_state.head<3>();
     const auto d = expect_rest_converges_at_order_four(m, loads, p_ref, m.interior_knots(),
                                                        kind.c_str(), kTightTolerance);

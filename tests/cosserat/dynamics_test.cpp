@@ -23,17 +23,9 @@ namespace {
 /// near 1e-11 m on these rods).
 constexpr double kTightTolerance = 1e-12;
 
-/// Tip position of the static shooting solver with RK8 on 64 steps (converged to round-off
-/// on these smooth rods).
+/// Tip position of the static shooting solver with RK8 on 64 steps.
 Eigen::Vector3d static_reference_tip(const rod::RodModel& m, const rod::Loads& loads) {
-  Options so;
-  so.integrator.method = ode::Method::kRk8;
-  so.integrator.steps = 64;
-  so.tolerance = kTightTolerance;
-  ShootingSolver ref(m, so);
-  Solution sol;
-  EXPECT_TRUE(ref.solve(loads, sol).converged());
-  return sol.tip_state.head<3>();
+  return static_reference(m, loads, 64, kTightTolerance).tip_state.head<3>();
 }
 
 /// The steel cantilever with two tensioned strings (a straight one and a helix), gravity
@@ -177,14 +169,8 @@ TEST(RodDynamics, TaperedRodAtRestReproducesTheStaticSolverAtOrderFour) {
   const rod::RodModel m = tapered_steel_cantilever();
   ASSERT_FALSE(m.uniform_body());
   const rod::Loads loads = sag_loads(m, 0.010);
-  Options so;
-  so.integrator.method = ode::Method::kRk8;
-  so.integrator.steps = 128;
-  so.tolerance = kTightTolerance;
-  ShootingSolver ref(m, so);
-  Solution sol;
-  ASSERT_TRUE(ref.solve(loads, sol).converged());
-  const Eigen::Vector3d p_ref = sol.tip_state.head<3>();
+  const Eigen::Vector3d p_ref =
+      static_reference(m, loads, 128, kTightTolerance).tip_state.head<3>();
   // The jump at s = 0.3 is a grid node.
   EXPECT_TRUE(expect_rest_converges_at_order_four(m, loads, p_ref, {0.3}, "tapered rod",
                                                   kTightTolerance));
