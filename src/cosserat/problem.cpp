@@ -49,6 +49,10 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
     K_nu_tip = model.shear_extension_stiffness(L, rod::Side::kLeft);
     K_omega_tip = model.bending_torsion_stiffness(L, rod::Side::kLeft);
     omega_star_tip = model.reference_curvature_at(L, rod::Side::kLeft);
+    for (const rod::Profile& c : model.reference_curvature_profile) {
+      omega_star_varies =
+          omega_star_varies || (!c.is_constant() && c.min_value() != c.max_value());
+    }
     knots = model.breakpoints();
     knots.push_back(0.0);
     knots.push_back(0.5 * L);  // a step node at L/2 (the bending radius samples it)
@@ -79,7 +83,14 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
     }
     weight_length = rho_A_ref > 0.0 ? mass / rho_A_ref : L;
   }
+  omega_star_tip_model = omega_star_tip;
   add_string_knots();
+}
+
+void RodProblem::set_omega_star_fraction(double mu) {
+  omega_star_fraction = mu;
+  omega_star_tip = omega_star_tip_model;
+  if (mu != 1.0) omega_star_tip = omega_star + mu * (omega_star_tip_model - omega_star);
 }
 
 void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
@@ -87,6 +98,7 @@ void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& 
   Kn = model.shear_extension_stiffness(s, side);
   Kw = model.bending_torsion_stiffness(s, side);
   ws = model.reference_curvature_at(s, side);
+  if (omega_star_fraction != 1.0) ws = omega_star + omega_star_fraction * (ws - omega_star);
   wf = rho_A_ref > 0.0 ? model.mass_per_length_kg_m(s, side) / rho_A_ref : 1.0;
 }
 

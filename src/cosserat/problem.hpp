@@ -77,6 +77,16 @@ struct RodProblem {
   bool to_tip(int i) const { return span_hi[static_cast<std::size_t>(i)] == L; }
   /// The stiffnesses, omega* and weight factor at s (one-sided limit `side` at a jump).
   void properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
+
+  /// Homotopy in the variation of omega* along s (the shooting solver's cold start of a body
+  /// whose reference curvature varies): with fraction mu, the IVP and the tip conditions see
+  ///   omega*_mu(s) = omega*(0) + mu (omega*(s) - omega*(0)),
+  /// so mu = 0 is the body with the base's reference curvature throughout and mu = 1 (the
+  /// default, and the value outside that start) the model, bit for bit.
+  bool omega_star_varies = false;  // a component of omega* takes more than one value along s
+  double omega_star_fraction = 1.0;
+  Vec3 omega_star_tip_model;  // omega*(L) of the model (omega_star_tip at mu = 1)
+  void set_omega_star_fraction(double mu);
 };
 
 }  // namespace tcasim::cosserat::internal

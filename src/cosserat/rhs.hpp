@@ -53,6 +53,7 @@ struct RodRhs : RodProblem {
     const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
     properties(s, side, k.Kn, k.Kw, k.ws, k.wf);
     model.property_slopes(s, side, k.dKn, k.dKw, k.dws);
+    if (omega_star_fraction != 1.0) k.dws *= omega_star_fraction;
     k.Kn_inv = k.Kn.cwiseInverse();
     k.Kw_inv = k.Kw.cwiseInverse();
     return k;

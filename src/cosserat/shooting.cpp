@@ -162,6 +162,16 @@ Summary ShootingSolver::Impl::solve_in_layout(const Actuation& act, Solution& so
   // A warm point farther from convergence than the cold path's start runs the cold path
   // (with the warm Jacobian on the coarse level), and the warm start only if that fails.
   const bool start_warm = warm && warm_start_pays(act, sol, J, x, loaded_guess);
+  if (!warm && omega_star_varies) {
+    set_parameters(act, 1.0, Eigen::VectorXd::Zero(nx));
+    if (!f_ext_W.isZero(0.0) &&
+        omega_star_homotopy(act, sol, x, J, summary, why) == Summary::Status::kConverged) {
+      sol.jacobian = J;
+      return done(Summary::Status::kConverged, "", x);
+    }
+    J.resize(0, 0);  // the ordinary cold start, as without the homotopy
+    coarse_jacobian_x.resize(0);
+  }
   if (start_warm) {
     x = sol.unknowns;
   } else if (!warm) {

@@ -140,6 +140,17 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// so it is rebuilt from the previous solution's (a, b) and the new ones at the same point
   /// under `act` (the residual there comes from the IVP memo, without integration).
   void refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
+  /// Cold start of a body whose reference curvature varies along s under a distributed load
+  /// (the guess, a constant-strain arc, knows neither the variation nor, for a heavy soft
+  /// body, the weight): a homotopy in omega*'s variation (RodProblem::set_omega_star_fraction).
+  /// The body with the base's omega* throughout (mu = 0) is solved from the guess as a cold
+  /// start is (direct_solve, and from the guess without gravity if that fails); then mu steps
+  /// to 1 by warm direct solves, straight to 1 first, the step halved after a failure (down to
+  /// Options::min_continuation_step). Returns kConverged with x, J, sol's coarse fields at the
+  /// model (mu = 1); otherwise the status of the failed stage (the caller then runs the
+  /// ordinary cold start) with mu back at 1.
+  Summary::Status omega_star_homotopy(const Actuation& act, Solution& sol, Eigen::VectorXd& x,
+                                      Eigen::MatrixXd& J, Summary& summary, std::string& why);
   /// The actuation as a flat vector (documented at ShootingSolver::solve).
   static Eigen::VectorXd actuation_vector(const Actuation& act);
   /// Extrapolates the unknowns to the actuation a along Solution::path: the newest points
@@ -199,6 +210,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   std::vector<double> acc_dphi_dT, acc_dphi_ddelta;  // at the accepted point (its actuation)
   Vec3 acc_f_ext = Vec3::Zero();
   const IntegrationLevel* acc_level = nullptr;
+  double acc_omega_star_fraction = 1.0;
   Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
   int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
   int ivp_count = 0;

@@ -39,11 +39,12 @@ bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double la
 
 bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x) const {
   return memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x &&
-         acc_cT == cT && acc_f_ext == f_ext_W;
+         acc_cT == cT && acc_f_ext == f_ext_W && acc_omega_star_fraction == omega_star_fraction;
 }
 
 void ShootingSolver::Impl::remember(double lambda, const Eigen::VectorXd& x) {
-  acc_full_load = lambda == 1.0 && level == &fine_level;
+  acc_full_load = lambda == 1.0 && level == &fine_level && omega_star_fraction == 1.0;
+  acc_omega_star_fraction = omega_star_fraction;
   memo_valid = y.allFinite();
   acc_cT = cT;
   acc_f_ext = f_ext_W;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error.hpp"
 #include "cosserat/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
@@ -113,6 +114,55 @@ bool ShootingSolver::Impl::warm_start_pays(const Actuation& act, const Solution&
   }
   level = &fine_level;
   return pays;
+}
+
+Summary::Status ShootingSolver::Impl::omega_star_homotopy(const Actuation& act, Solution& sol,
+                                                         Eigen::VectorXd& x, Eigen::MatrixXd& J,
+                                                         Summary& summary, std::string& why) {
+  struct Restore {  // mu = 1 on every return
+    ShootingSolver::Impl& s;
+    ~Restore() { s.set_omega_star_fraction(1.0); }
+  } restore{*this};
+  set_omega_star_fraction(0.0);
+  bool loaded_guess = false;
+  x = initial_guess(act, 1.0, true, &loaded_guess);
+  J.resize(0, 0);
+  Summary::Status st = direct_solve(act, sol, false, x, J, summary, why);
+  if (st != Summary::Status::kConverged && loaded_guess) {
+    x = initial_guess(act, 1.0, false);
+    J.resize(0, 0);
+    st = direct_solve(act, sol, false, x, J, summary, why);
+  }
+  if (st != Summary::Status::kConverged) {
+    why = "at the base's reference curvature: " + why;
+    return st;
+  }
+  double mu = 0.0, step = 1.0;
+  while (mu < 1.0) {
+    const double mt = std::min(1.0, mu + step);
+    set_omega_star_fraction(mt);
+    Eigen::VectorXd xt = x;
+    Eigen::MatrixXd Jt = J;
+    Solution trial;  // the coarse fields of the warm direct solve
+    trial.coarse_unknowns = sol.coarse_unknowns;
+    trial.coarse_jacobian = sol.coarse_jacobian;
+    st = direct_solve(act, trial, true, xt, Jt, summary, why);
+    if (st == Summary::Status::kConverged) {
+      mu = mt;
+      x = xt;
+      J = Jt;
+      sol.coarse_unknowns = trial.coarse_unknowns;
+      sol.coarse_jacobian = trial.coarse_jacobian;
+      step = std::min(2.0 * step, 1.0 - mu);
+    } else {
+      step *= 0.5;
+      if (step < options.min_continuation_step) {
+        why = "reference-curvature homotopy stalled at fraction " + format_value(mu) + ": " + why;
+        return st;
+      }
+    }
+  }
+  return Summary::Status::kConverged;
 }
 
 void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,

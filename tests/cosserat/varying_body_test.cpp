@@ -1,6 +1,7 @@
 // Shooting solver on bodies whose section varies along s (docs/scenario-format.md "Profiles
 // along the body"): closed forms of the end-moment cantilever (tapered, stepped), their
-// observed order, the sensitivities through a jump, and uniform bodies unchanged.
+// observed order, the sensitivities through a jump, uniform bodies unchanged, and the cold
+// start's homotopy in the reference curvature's variation.
 #include "support/varying_body.hpp"
 
 #include <gtest/gtest.h>
@@ -168,6 +169,56 @@ TEST(ShootingVaryingBody, LoadedVaryingBodyConvergesAndBalancesGlobally) {
   // The base reaction balances the (varying) weight, the tip wrench and the strings.
   EXPECT_LE(s.force_imbalance_W_N.norm(), 1e-9);
   EXPECT_LE(s.moment_imbalance_W_Nm.norm(), 1e-10);
+}
+
+TEST(ShootingVaryingBody, ColdStartThroughTheCurvatureHomotopyFindsTheWarmStartsEquilibrium) {
+  // bench/bench_varying_body's tapered tentacle (soft, hanging under its weight, w L^3 / EI of
+  // several hundred) with a jump of the reference curvature at L/2. A cold solve first solves
+  // the body without the jump, then with it (ShootingSolver::solve); without that homotopy it
+  // took 525 IVPs. The same equilibrium must come out of the ordinary path: a warm start from
+  // the uniform body's solution (no homotopy on warm starts), both at tolerance 1e-12.
+  auto tentacle = [](bool tapered) {
+    nlohmann::json j = nlohmann::json::parse(R"({
+      "schema": "tcasim.scenario/1", "name": "tentacle",
+      "body": {"length_m": 0.2, "section": {"shape": "circle", "diameter_m": 0.015},
+               "material": {"youngs_modulus_Pa": 69e3, "poisson_ratio": 0.5,
+                            "density_kg_m3": 1070}},
+      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+      "gravity_m_s2": [0, 0, -9.80665],
+      "actuators": [
+        {"name": "tx", "routing": {"type": "straight", "offset_m": [0.003, 0.0]},
+         "drive": {"type": "tension", "tension_N": 0.05}},
+        {"name": "ty", "routing": {"type": "straight", "offset_m": [0.0, 0.003]},
+         "drive": {"type": "tension", "tension_N": 0.02}}]})");
+    if (tapered) {
+      j["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.2}}, {"values", {0.020, 0.010}}};
+      j["body"]["reference_curvature_1_m"] = {
+          nlohmann::json{{"s_m", {0.0, 0.1, 0.1, 0.2}}, {"values", {0.0, 0.0, -2.0, -2.0}}}, 0.0,
+          0.0};
+    }
+    return rod::parse_scenario(j);
+  };
+  const rod::RodModel m = tentacle(true), u = tentacle(false);
+  const Actuation act = Actuation::from_model(m);
+  ShootingSolver cold(m, rk4(40));
+  Solution sc;
+  const Summary s = cold.solve(act, sc);
+  ASSERT_TRUE(s.converged()) << s.message;
+  std::printf("[homotopy] cold solve: %d Newton iterations, %d IVPs\n", s.iterations, s.ivp_count);
+  EXPECT_LE(s.ivp_count, 100);
+
+  ShootingSolver uniform(u, rk4(40));
+  Solution sw;
+  ASSERT_TRUE(uniform.solve(Actuation::from_model(u), sw).converged());
+  ShootingSolver warm(m, rk4(40));
+  const Summary w = warm.solve(act, sw);
+  ASSERT_TRUE(w.converged()) << w.message;
+  const rod::Result rc = cold.make_result(act, sc, s), rw = warm.make_result(act, sw, w);
+  const double d = (rc.tip_position_W_m - rw.tip_position_W_m).norm();
+  std::printf("[homotopy] warm start from the uniform body: %d IVPs; tips differ by %.2e m\n",
+              w.ivp_count, d);
+  EXPECT_LE(d, 1e-10);
+  EXPECT_LE((rc.tip_R_WB - rw.tip_R_WB).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 }  // namespace
