@@ -15,6 +15,7 @@
 
 #include "cosserat/shooting.hpp"
 #include "rod/scenario.hpp"
+#include "support/varying_body.hpp"
 
 namespace {
 
@@ -23,27 +24,7 @@ using namespace tcasim;
 /// Tip accuracy both bodies are run at [m] (1e-7 of the 0.2 m length).
 constexpr double kTipTolerance = 2e-8;
 
-nlohmann::json tentacle(bool tapered) {
-  nlohmann::json j = nlohmann::json::parse(R"({
-    "schema": "tcasim.scenario/1", "name": "tentacle",
-    "body": {"length_m": 0.2, "section": {"shape": "circle", "diameter_m": 0.015},
-             "material": {"youngs_modulus_Pa": 69e3, "poisson_ratio": 0.5,
-                          "density_kg_m3": 1070}},
-    "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
-    "gravity_m_s2": [0, 0, -9.80665],
-    "actuators": [
-      {"name": "tendon-x", "routing": {"type": "straight", "offset_m": [0.003, 0.0]},
-       "drive": {"type": "tension", "tension_N": 0.05}},
-      {"name": "tendon-y", "routing": {"type": "straight", "offset_m": [0.0, 0.003]},
-       "drive": {"type": "tension", "tension_N": 0.02}}]})");
-  if (tapered) {
-    j["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.2}}, {"values", {0.020, 0.010}}};
-    j["body"]["reference_curvature_1_m"] = {
-        nlohmann::json{{"s_m", {0.0, 0.1, 0.1, 0.2}}, {"values", {0.0, 0.0, -2.0, -2.0}}}, 0.0,
-        0.0};
-  }
-  return j;
-}
+nlohmann::json tentacle(bool tapered) { return test_support::hanging_tentacle(tapered); }
 
 cosserat::Options rk4(int steps) {
   cosserat::Options o;

@@ -178,25 +178,7 @@ TEST(ShootingVaryingBody, ColdStartThroughTheCurvatureHomotopyFindsTheWarmStarts
   // took 525 IVPs. The same equilibrium must come out of the ordinary path: a warm start from
   // the uniform body's solution (no homotopy on warm starts), both at tolerance 1e-12.
   auto tentacle = [](bool tapered) {
-    nlohmann::json j = nlohmann::json::parse(R"({
-      "schema": "tcasim.scenario/1", "name": "tentacle",
-      "body": {"length_m": 0.2, "section": {"shape": "circle", "diameter_m": 0.015},
-               "material": {"youngs_modulus_Pa": 69e3, "poisson_ratio": 0.5,
-                            "density_kg_m3": 1070}},
-      "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
-      "gravity_m_s2": [0, 0, -9.80665],
-      "actuators": [
-        {"name": "tx", "routing": {"type": "straight", "offset_m": [0.003, 0.0]},
-         "drive": {"type": "tension", "tension_N": 0.05}},
-        {"name": "ty", "routing": {"type": "straight", "offset_m": [0.0, 0.003]},
-         "drive": {"type": "tension", "tension_N": 0.02}}]})");
-    if (tapered) {
-      j["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.2}}, {"values", {0.020, 0.010}}};
-      j["body"]["reference_curvature_1_m"] = {
-          nlohmann::json{{"s_m", {0.0, 0.1, 0.1, 0.2}}, {"values", {0.0, 0.0, -2.0, -2.0}}}, 0.0,
-          0.0};
-    }
-    return rod::parse_scenario(j);
+    return rod::parse_scenario(test_support::hanging_tentacle(tapered));
   };
   const rod::RodModel m = tentacle(true), u = tentacle(false);
   const Actuation act = Actuation::from_model(m);

@@ -106,4 +106,29 @@ inline nlohmann::json loaded_varying_body() {
   return j;
 }
 
+/// The soft tentacle hanging under gravity of the varying-body benchmark and its tests: 0.2 m
+/// of EcoFlex (E 69 kPa, density 1070), two tendons 3 mm off-axis (0.05 and 0.02 N); uniform
+/// (diameter 15 mm) or tapered (20 to 10 mm) with a jump of the reference curvature at L/2.
+inline nlohmann::json hanging_tentacle(bool tapered) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "schema": "tcasim.scenario/1", "name": "tentacle",
+    "body": {"length_m": 0.2, "section": {"shape": "circle", "diameter_m": 0.015},
+             "material": {"youngs_modulus_Pa": 69e3, "poisson_ratio": 0.5,
+                          "density_kg_m3": 1070}},
+    "base": {"rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]]},
+    "gravity_m_s2": [0, 0, -9.80665],
+    "actuators": [
+      {"name": "tendon-x", "routing": {"type": "straight", "offset_m": [0.003, 0.0]},
+       "drive": {"type": "tension", "tension_N": 0.05}},
+      {"name": "tendon-y", "routing": {"type": "straight", "offset_m": [0.0, 0.003]},
+       "drive": {"type": "tension", "tension_N": 0.02}}]})");
+  if (tapered) {
+    j["body"]["section"]["diameter_m"] = {{"s_m", {0.0, 0.2}}, {"values", {0.020, 0.010}}};
+    j["body"]["reference_curvature_1_m"] = {
+        nlohmann::json{{"s_m", {0.0, 0.1, 0.1, 0.2}}, {"values", {0.0, 0.0, -2.0, -2.0}}}, 0.0,
+        0.0};
+  }
+  return j;
+}
+
 }  // namespace tcasim::test_support
