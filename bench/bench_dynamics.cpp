@@ -12,6 +12,8 @@
 //   with spatial_error_m = max |tip(N) - tip(N = 160)| over the 25 s, and
 //   euler40_spatial_error_m the same for forward Euler along s at N = 40 (a first-order spatial
 //   scheme on [Till2019]'s grid; DynamicsOptions::SpatialScheme::kEuler).
+// - BM_SteelCantilever25sTiming: the same 25 s at N RK4 steps (argument), timing counters only
+//   (for profiles: no reference runs).
 // - BM_VoltageStep10s: a voltage step (0 -> 0.714 V at t = 0+) on the paper's circular
 //   manipulator (validation/scenarios/circular-manipulator-voltage.json; argument: viscosity
 //   eta [Pa s], 1000 as in validate_dynamics: undamped, the rod whips and a step fails after
@@ -157,6 +159,26 @@ void BM_SteelCantilever25sCoarse(benchmark::State& state) {
   state.counters["euler40_spatial_error_m"] = euler40;
 }
 BENCHMARK(BM_SteelCantilever25sCoarse)->Arg(10)->Arg(20)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+/// The 25 s of BM_SteelCantilever25s at N RK4 steps (argument) without the reference runs of
+/// the error counters (a profile of it, e.g. under callgrind, holds the time steps only).
+void BM_SteelCantilever25sTiming(benchmark::State& state) {
+  constexpr int kSteps25s = 12500;
+  const int n = static_cast<int>(state.range(0));
+  Work w;
+  for (auto _ : state) {
+    const std::vector<Eigen::Vector3d> tip = run(n, kSteps25s, &w);
+    benchmark::DoNotOptimize(tip.data());
+    if (static_cast<int>(tip.size()) != kSteps25s) state.SkipWithError("a time step failed");
+  }
+  set_counters(state, w, kSteps25s, kDt);
+}
+BENCHMARK(BM_SteelCantilever25sTiming)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 /// The circular manipulator with the voltage switched on at t = 0+ (as validate_dynamics) and
 /// Kelvin-Voigt viscosity eta [Pa s] (0: none, as shipped).
