@@ -259,7 +259,10 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
 
 void RodDynamics::Impl::set_loads(const rod::Loads& loads_in) {
   loads_in.validate(model);
-  const rod::Loads loads = loads_in.applied(model);
+  // applied(): the loads themselves at load scale 1 (no copy per time step).
+  rod::Loads scaled;
+  if (loads_in.load_scale != 1.0) scaled = loads_in.applied(model);
+  const rod::Loads& loads = loads_in.load_scale != 1.0 ? scaled : loads_in;
   for (int i = 0; i < n_act; ++i) {
     if (tca_slot[i] >= 0) {
       // TCA: the segments' temperatures (an electric drive's are the thermal states).
@@ -295,32 +298,43 @@ void RodDynamics::Impl::set_scales() {
   if (n_act > 0) scale.segment(kDelta, n_act).setConstant(L);
   if (n_tca > 0) scale.segment(kT, n_tca).setConstant(F_c);
   inv_scale_ = scale.array().inverse();
-}
-Eigen::VectorXd RodDynamics::Impl::predict(int p) const {
-  // Newton's backward-difference extrapolation: z(n+1) ~ sum_{j=0..p} (-1)^j C(p+1, j+1) z(n-j).
-  Eigen::VectorXd out = z;
-  double c = 1.0;
-  for (int j = 0; j <= p; ++j) {
-    c = c * (p + 1 - j) / (j + 1);  // C(p+1, j+1)
-    const Eigen::VectorXd& zj = j == 0 ? z : z_past[j - 1];
-    if (j == 0) {
-      out = c * zj;
-    } else {
-      out += (j % 2 ? -c : c) * zj;
-    }
-  }
-  return out;
+  unknown_scale(scale_z_);
+  inv_scale_z_ = scale_z_.array().inverse();
 }
 
-int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) const {
-  const Eigen::ArrayXd inv_scale = unknown_scale().array().inverse();
+namespace {
+
+/// The signed weights w_j = (-1)^j C(p+1, j+1), j = 0 .. p, of predict(p) (in its order of
+/// operations: C(p+1, j+1) = C(p+1, j) (p + 1 - j) / (j + 1)).
+void predictor_weights(int p, double* w) {
+  double c = 1.0;
+  for (int j = 0; j <= p; ++j) {
+    c = c * (p + 1 - j) / (j + 1);
+    w[j] = j % 2 ? -c : c;
+  }
+}
+
+}  // namespace
+
+void RodDynamics::Impl::predict(int p, Eigen::VectorXd& out) const {
+  // Newton's backward-difference extrapolation: z(n+1) ~ sum_{j=0..p} (-1)^j C(p+1, j+1) z(n-j).
+  double w[kMaxPredictorOrder + 1];
+  predictor_weights(p, w);
+  out = w[0] * z;
+  for (int j = 1; j <= p; ++j) out += w[j] * z_past[j - 1];
+}
+
+int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) {
+  // predict()'s numbers, order by order, in the kept workspace.
+  Eigen::VectorXd& e = ws_predict_;
   int best = 0;
   double best_error = HUGE_VAL;
   const int p_max = std::min(kMaxPredictorOrder, history_steps);
   for (int p = 0; p <= p_max; ++p) {
-    const double e = ((predict(p) - z_new).array() * inv_scale).abs().maxCoeff();
-    if (e < best_error) {
-      best_error = e;
+    predict(p, e);
+    const double err = ((e - z_new).array() * inv_scale_z_).abs().maxCoeff();
+    if (err < best_error) {
+      best_error = err;
       best = p;
     }
   }
@@ -404,7 +418,8 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   // Electric drives: each segment's temperature over [t, t + dt] (it does not depend on the
   // mechanics, so it is advanced first, exactly where the law is linear in T, else by the
   // trapezoidal rule; docs/conventions.md "TCAs in rod dynamics").
-  std::vector<std::vector<double>> T_old = d.temperatures_K;
+  std::vector<std::vector<double>>& T_old = d.T_old_;
+  T_old = d.temperatures_K;
   for (int i = 0; i < d.n_act; ++i) {
     if (d.temperatures_K[i].empty()) continue;
     const rod::Drive& drive = d.model.actuators[i].drive;
@@ -445,7 +460,8 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   // would have predicted the last step best (quadratic on the first steps).
   const int order =
       std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
-  Eigen::VectorXd zz = d.predict(order);
+  Eigen::VectorXd& zz = d.z_start_;
+  d.predict(order, zz);
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) {
     if (d.history_steps > 0) {
@@ -482,7 +498,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   if (static_cast<int>(d.z_past.size()) < kMaxPredictorOrder) d.z_past.emplace_back();
   for (std::size_t j = d.z_past.size() - 1; j > 0; --j) d.z_past[j].swap(d.z_past[j - 1]);
   d.z_past[0].swap(d.z);
-  d.z = zz;
+  d.z.swap(zz);
   ++d.history_steps;
   d.grid_converged = d.grid;
   d.t += d.opt.dt_s;

@@ -88,6 +88,8 @@ struct RodDynamics::Impl {
   DynamicsSummary solve(Eigen::VectorXd& z);
   /// Scale of each unknown (the state scales of its component): Newton's step is dz = scale u.
   Eigen::VectorXd unknown_scale() const;
+  /// unknown_scale() into s (resized to unknowns()).
+  void unknown_scale(Eigen::VectorXd& s) const;
   void set_loads(const rod::Loads& loads);
   void set_scales();
   int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions
@@ -156,6 +158,8 @@ struct RodDynamics::Impl {
   double F_c = 1.0;
   Eigen::VectorXd scale;  // per state component (D)
   Eigen::ArrayXd inv_scale_;  // 1 / scale
+  Eigen::VectorXd scale_z_;   // unknown_scale() of the current scales (set_scales)
+  Eigen::ArrayXd inv_scale_z_;  // 1 / scale_z_
   // Per slot: history of the current step, data of the last evaluation (trial), of the
   // last two converged steps and the time derivative at the last one.
   std::vector<dynamics::PointRates> hist, cur_t;
@@ -169,11 +173,11 @@ struct RodDynamics::Impl {
   int history_steps = 0;    // converged steps behind z (for the extrapolated start)
   int predictor_order = 0;  // the order of predict() that would have started the last step best
   /// Start of the next step: the polynomial of degree p through z and z_past[0 .. p-1]
-  /// evaluated one step ahead (p <= history_steps).
-  Eigen::VectorXd predict(int p) const;
+  /// evaluated one step ahead (p <= history_steps), into out.
+  void predict(int p, Eigen::VectorXd& out) const;
   /// After a converged step to `z_new`: the predictor order that would have come closest to it
   /// (scaled max norm, orders 0 .. min(kMaxPredictorOrder, history_steps)).
-  int best_predictor_order(const Eigen::VectorXd& z_new) const;
+  int best_predictor_order(const Eigen::VectorXd& z_new);
   // Jacobian (scaled) and its factorization.
   Eigen::SparseMatrix<double> J_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
@@ -185,6 +189,9 @@ struct RodDynamics::Impl {
   Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
   std::vector<internal::Vec3> slot_r_, slot_dr_;
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
+  // solve()'s and step()'s workspace (kept between steps: no allocations per step).
+  Eigen::VectorXd r_, z_old_, dz_, u_, z_start_, ws_predict_;
+  std::vector<std::vector<double>> T_old_;
   double lu_c0 = -1.0;
   std::vector<Eigen::Triplet<double>> triplets_;
 };

@@ -11,18 +11,27 @@ namespace tcasim::cosserat {
 using namespace dynamics_names;
 
 Eigen::VectorXd RodDynamics::Impl::unknown_scale() const {
-  Eigen::VectorXd s(unknowns());
+  Eigen::VectorXd s;
+  unknown_scale(s);
+  return s;
+}
+
+void RodDynamics::Impl::unknown_scale(Eigen::VectorXd& s) const {
+  s.resize(unknowns());
   s.head<6>() = scale.segment<6>(kN);
   for (int j = 0; j < n_tca; ++j) s[6 + j] = scale[kT + j];
   for (int k = 1; k < M; ++k) s.segment(n0() + (k - 1) * D, D) = scale;
-  return s;
 }
 
 DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   DynamicsSummary sum;
   const int n = unknowns();
-  const Eigen::VectorXd scale_z = unknown_scale();
-  Eigen::VectorXd r(n), z_old = zz, dz = Eigen::VectorXd::Zero(n);
+  // (set_scales() has set scale_z_; the vectors are the kept workspace)
+  const Eigen::VectorXd& scale_z = scale_z_;
+  Eigen::VectorXd &r = r_, &z_old = z_old_, &dz = dz_, &u = u_;
+  r.resize(n);
+  z_old = zz;
+  dz.setZero(n);
   double rn_old = HUGE_VAL, lambda = 1.0;
   bool need_fresh = !lu_valid || lu_c0 != c0_active;
   bool step_taken = false, step_from_fresh = false;
@@ -84,14 +93,19 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     // Accept zz; next Newton step with the current factorization.
     z_old = zz;
     rn_old = rn;
-    Eigen::VectorXd u =
-        dense ? Eigen::VectorXd(dense_lu_.solve(-r)) : Eigen::VectorXd(lu_.solve(-r));
+    // u = J^-1 r; the step is -u (the same numbers as J^-1 (-r): every operation of the
+    // solve commutes with the sign).
+    if (dense) {
+      u.noalias() = dense_lu_.solve(r);
+    } else {
+      u = lu_.solve(r);
+    }
     if (!u.allFinite()) {
       sum.status = DynamicsSummary::Status::kSingularJacobian;
       sum.message = "the Newton step is not finite";
       return sum;
     }
-    dz = u.cwiseProduct(scale_z);
+    dz = -(u.cwiseProduct(scale_z));
     lambda = 1.0;
     zz = z_old + dz;
     step_taken = true;
