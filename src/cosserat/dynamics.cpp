@@ -302,6 +302,24 @@ void RodDynamics::Impl::set_scales() {
   inv_scale_z_ = scale_z_.array().inverse();
 }
 
+void RodDynamics::Impl::set_section_constants() {
+  const double c = c0_active;
+  const auto constants = [&](const dynamics::SectionAt& sp) {
+    dynamics::SectionConstants k;
+    k.Kt_se_inv = (sp.K_se + c * sp.B_se).cwiseInverse();
+    k.Kt_bt_inv = (sp.K_bt + c * sp.B_bt).cwiseInverse();
+    k.K_bt_omega_star = sp.K_bt.cwiseProduct(sp.omega_star);
+    k.f_W = sp.rho_A * g_W;
+    return k;
+  };
+  if (uniform) {
+    sec_c = constants(sec);
+    return;
+  }
+  slot_sec_c.resize(slot_sec.size());
+  for (std::size_t i = 0; i < slot_sec.size(); ++i) slot_sec_c[i] = constants(slot_sec[i]);
+}
+
 namespace {
 
 /// The signed weights w_j = (-1)^j C(p+1, j+1), j = 0 .. p, of predict(p) (in its order of
@@ -363,6 +381,7 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   d.history_steps = 0;
   for (auto& hh : d.hist) hh = PointRates{};
   d.set_scales();
+  d.set_section_constants();
   // Start: the static shooting solver's base unknowns, integrated over the whole length with
   // this discretization (a static problem has no fast spatial modes).
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(d.D);
@@ -445,6 +464,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   d.set_loads(loads);
   d.c0_active = d.c0;
   d.set_scales();
+  d.set_section_constants();
   // History of the BDF-alpha formula at every slot: y_h = c1 y(n) + c2 y(n-1) + d1 y_t(n).
   for (int i = 0; i < d.slots(); ++i) {
     const PointData &a = d.cur[i], &b = d.prev[i];

@@ -33,6 +33,13 @@ struct PointData {
   Vec3 e = Vec3::Zero(), omega = Vec3::Zero(), q = Vec3::Zero(), w = Vec3::Zero();
   Vec3 p = Vec3::Zero();
 };
+/// What rhs_residual() reads of a section in one solve (c0 and the gravity fixed), computed as
+/// it did per call: the inverse effective stiffnesses 1 / (K + c0 B), K_bt omega* and the
+/// weight per length rho A g.
+struct SectionConstants {
+  Vec3 Kt_se_inv = Vec3::Zero(), Kt_bt_inv = Vec3::Zero();
+  Vec3 K_bt_omega_star = Vec3::Zero(), f_W = Vec3::Zero();
+};
 /// History (or time derivative) of the differentiated quantities at one point.
 struct PointRates {
   Vec3 e = Vec3::Zero(), omega = Vec3::Zero(), q = Vec3::Zero(), w = Vec3::Zero();
@@ -92,6 +99,9 @@ struct RodDynamics::Impl {
   void unknown_scale(Eigen::VectorXd& s) const;
   void set_loads(const rod::Loads& loads);
   void set_scales();
+  /// The SectionConstants of every section for the current c0_active and g_W (after
+  /// set_loads(), before a solve).
+  void set_section_constants();
   int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions
   int unknowns() const { return n0() + (M - 1) * D; }
   int slots() const { return 4 * N + 1; }  // 4 stages per step, then the tip point
@@ -107,6 +117,12 @@ struct RodDynamics::Impl {
   /// Varying body: the properties at every stage slot (the end stage of a step and the tip
   /// take the limit from the left at a jump).
   std::vector<dynamics::SectionAt> slot_sec;
+  /// set_section_constants(): of `sec` (uniform), else per stage slot.
+  dynamics::SectionConstants sec_c;
+  std::vector<dynamics::SectionConstants> slot_sec_c;
+  const dynamics::SectionConstants& constants_of(int slot) const {
+    return uniform ? sec_c : slot_sec_c[static_cast<std::size_t>(slot)];
+  }
   double tip_mass_kg = 0.0;  // options' or the model's
   int n_act = 0, D = 0, N = 0, M = 0, S = 0;
   // Stages per step along s and their weights (RK4: 4 and kStageB; forward Euler: 1 and

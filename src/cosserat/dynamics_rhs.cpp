@@ -194,13 +194,12 @@ bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double
   const Eigen::Map<const Vec3> Nb(y + kN), Mb(y + kM), q(y + kQ), w(y + kW);
   const PointRates& H = hist[slot];
   const dynamics::SectionAt& sp = section_of(slot);
+  const dynamics::SectionConstants& kc = constants_of(slot);
   const double c = c0_active;
   // (in rhs()'s order of operations: the same numbers)
-  const Vec3 Kt_se_inv = (sp.K_se + c * sp.B_se).cwiseInverse();
-  const Vec3 Kt_bt_inv = (sp.K_bt + c * sp.B_bt).cwiseInverse();
-  const Vec3 e = Kt_se_inv.cwiseProduct(Nb - sp.B_se.cwiseProduct(H.e));
-  const Vec3 om = Kt_bt_inv.cwiseProduct(Mb + sp.K_bt.cwiseProduct(sp.omega_star) -
-                                         sp.B_bt.cwiseProduct(H.omega));
+  const Vec3 e = kc.Kt_se_inv.cwiseProduct(Nb - sp.B_se.cwiseProduct(H.e));
+  const Vec3 om =
+      kc.Kt_bt_inv.cwiseProduct(Mb + kc.K_bt_omega_star - sp.B_bt.cwiseProduct(H.omega));
   PointData& X = trial[slot];
   X.e = e;
   X.omega = om;
@@ -217,8 +216,8 @@ bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double
   dR.col(0) = om.z() * R.col(1) - om.y() * R.col(2);
   dR.col(1) = om.x() * R.col(2) - om.z() * R.col(0);
   dR.col(2) = om.y() * R.col(0) - om.x() * R.col(1);
-  const Vec3 f_W = sp.rho_A * g_W;
-  Eigen::Map<Vec3>(dy + kN) = -om.cross(Nb) + sp.rho_A * (w.cross(q) + q_t) - R.transpose() * f_W;
+  Eigen::Map<Vec3>(dy + kN) =
+      -om.cross(Nb) + sp.rho_A * (w.cross(q) + q_t) - R.transpose() * kc.f_W;
   Eigen::Map<Vec3>(dy + kM) =
       -om.cross(Mb) - nu.cross(Nb) + w.cross(Jw) + sp.rho_J.cwiseProduct(w_t);
   Eigen::Map<Vec3>(dy + kQ) = e_t - om.cross(q) + w.cross(nu);

@@ -55,10 +55,10 @@ bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
   double* __restrict acc = ws_acc_.data();
   for (int i = k * S; i < (k + 1) * S; ++i) {
     std::copy(y, y + D, grid[i].data());
-    std::copy(y, y + D, Y);
     const double s = s_grid[i], hs = step_length(i);
     for (int j = 0; j < stages; ++j) {
-      if (!rhs_residual(s + kStageC[j] * hs, Y, 4 * i + j, kj)) return false;
+      // (the first stage at y itself)
+      if (!rhs_residual(s + kStageC[j] * hs, j == 0 ? y : Y, 4 * i + j, kj)) return false;
       const double b = stage_b[j];
       double sum = 0.0;
       if (j == 0) {
