@@ -205,6 +205,13 @@ struct RodDynamics::Impl {
   Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
   std::vector<internal::Vec3> slot_r_, slot_dr_;
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
+  /// The dense factors by rows, with the band each row of them occupies: row i of L (unit
+  /// lower) has its nonzeros in columns [lu_first_[i], i), row i of U in [i, lu_last_[i]).
+  /// The multiple-shooting matrix is block bidiagonal, so the factors are banded.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> lu_rows_;
+  std::vector<int> lu_first_, lu_last_;
+  /// Dense Newton system: x = J^-1 b by the factors (x and b distinct, of unknowns()).
+  void dense_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   // solve()'s and step()'s workspace (kept between steps: no allocations per step).
   Eigen::VectorXd r_, z_old_, dz_, u_, z_start_, ws_predict_;
   std::vector<std::vector<double>> T_old_;

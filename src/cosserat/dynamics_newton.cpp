@@ -96,7 +96,7 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
     // u = J^-1 r; the step is -u (the same numbers as J^-1 (-r): every operation of the
     // solve commutes with the sign).
     if (dense) {
-      u.noalias() = dense_lu_.solve(r);
+      dense_solve(r, u);
     } else {
       u = lu_.solve(r);
     }

@@ -197,6 +197,17 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
       const Eigen::VectorXd piv = dense_lu_.matrixLU().diagonal().cwiseAbs();
       lu_valid = piv.allFinite() && piv.minCoeff() > 1e-14 * piv.maxCoeff();
       lu_c0 = c0_active;
+      // The factors by rows and their bands (for dense_solve()).
+      lu_rows_ = dense_lu_.matrixLU();
+      lu_first_.resize(n);
+      lu_last_.resize(n);
+      for (int i = 0; i < n; ++i) {
+        int first = 0, last = n;
+        while (first < i && lu_rows_(i, first) == 0.0) ++first;
+        while (last > i + 1 && lu_rows_(i, last - 1) == 0.0) --last;
+        lu_first_[i] = first;
+        lu_last_[i] = last;
+      }
       return true;
     }
     J_.resize(n, n);
@@ -211,6 +222,21 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
     lu_c0 = c0_active;
   }
   return true;
+}
+
+void RodDynamics::Impl::dense_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  // P J = L U: x = U^-1 L^-1 P b, each row's dot product over its band only (the same solution
+  // as PartialPivLU::solve up to the order of the sums).
+  const int n = static_cast<int>(lu_rows_.rows());
+  x.noalias() = dense_lu_.permutationP() * b;
+  for (int i = 1; i < n; ++i) {
+    const int f = lu_first_[i];
+    x[i] -= lu_rows_.row(i).segment(f, i - f).dot(x.segment(f, i - f));
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    const int len = lu_last_[i] - i - 1;
+    x[i] = (x[i] - lu_rows_.row(i).segment(i + 1, len).dot(x.segment(i + 1, len))) / lu_rows_(i, i);
+  }
 }
 
 }  // namespace tcasim::cosserat
