@@ -158,7 +158,12 @@ void BM_SteelCantilever25sCoarse(benchmark::State& state) {
   state.counters["spatial_error_m"] = max_distance(tip, ref);
   state.counters["euler40_spatial_error_m"] = euler40;
 }
-BENCHMARK(BM_SteelCantilever25sCoarse)->Arg(10)->Arg(20)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SteelCantilever25sCoarse)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 /// The 25 s of BM_SteelCantilever25s at N RK4 steps (argument) without the reference runs of
 /// the error counters (a profile of it, e.g. under callgrind, holds the time steps only).
