@@ -204,6 +204,14 @@ struct RodDynamics::Impl {
   // stage slot ([slot * n_act + i]).
   Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
   std::vector<internal::Vec3> slot_r_, slot_dr_;
+  /// Actuator a's routing r, r' as rhs() reads it at stage slot `slot` (routing_s, routing_side
+  /// at the slot's arc length; evaluated once in the constructor).
+  const internal::Vec3& slot_r(int slot, int a) const {
+    return slot_r_[static_cast<std::size_t>(slot * n_act + a)];
+  }
+  const internal::Vec3& slot_dr(int slot, int a) const {
+    return slot_dr_[static_cast<std::size_t>(slot * n_act + a)];
+  }
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
   /// The dense factors by rows, with the band each row of them occupies: row i of L (unit
   /// lower) has its nonzeros in columns [lu_first_[i], i), row i of U in [i, lu_last_[i]).

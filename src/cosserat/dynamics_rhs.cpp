@@ -8,7 +8,8 @@ namespace tcasim::cosserat {
 
 using namespace dynamics_names;
 
-bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
+bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
+                            const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
                             Eigen::MatrixXd* A) {
   const Eigen::Map<const Mat3> R(y.data() + kR);
   const Vec3 Nb = y.segment<3>(kN), Mb = y.segment<3>(kM);
@@ -35,8 +36,6 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
     for (int i = 0; i < n_act; ++i)
       if (!runs(slot, i)) cTl[i] = 0.0;
   }
-  const double s_r = routing_s(slot, s);
-  const rod::Side side = routing_side(slot);
   bool strings = false;
   for (int i = 0; i < n_act; ++i) strings = strings || cTl[i] != 0.0;
   Vec3 e, om;
@@ -60,8 +59,7 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
       double load = force_scale;
       for (int i = 0; i < n_act; ++i) {
         if (cTl[i] == 0.0) continue;
-        const rod::Routing& rt = model.actuators[i].routing;
-        const Vec3 r = rt.r(s_r, side), dr = rt.dr(s_r, side);
+        const Vec3 &r = slot_r(slot, i), &dr = slot_dr(slot, i);
         const Vec3 qi = e + Vec3::UnitZ() + om.cross(r) + dr;
         const double qn = qi.norm();
         const Vec3 qh = qi / qn;
@@ -112,8 +110,7 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
       dy[kDelta + i] = 0.0;
       continue;
     }
-    const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 qi = nu + om.cross(rt.r(s_r, side)) + rt.dr(s_r, side);
+    const Vec3 qi = nu + om.cross(slot_r(slot, i)) + slot_dr(slot, i);
     dy[kDelta + i] = qi.norm() - length_ratio[i];
   }
   if (n_tca > 0) dy.segment(kT, n_tca).setZero();  // T_j' = 0: one tension along the string
@@ -153,9 +150,8 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   Fx.block<3, 3>(kW, 3) = c * I + hat(w);
   for (int i = 0; i < n_act; ++i) {
     if (!runs(slot, i)) continue;
-    const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 r = rt.r(s_r, side);
-    const Vec3 qi = nu + om.cross(r) + rt.dr(s_r, side);
+    const Vec3& r = slot_r(slot, i);
+    const Vec3 qi = nu + om.cross(r) + slot_dr(slot, i);
     const Vec3 qh = qi.normalized();
     Fx.block<1, 3>(kDelta + i, 0) = qh.transpose();
     Fx.block<1, 3>(kDelta + i, 3) = r.cross(qh).transpose();
@@ -165,9 +161,8 @@ bool RodDynamics::Impl::rhs(double s, const Eigen::VectorXd& y, int slot, Eigen:
   for (int j = 0; j < n_tca; ++j) {
     const int i = tca_actuator[j];
     if (!runs(slot, i)) continue;
-    const rod::Routing& rt = model.actuators[i].routing;
-    const Vec3 r = rt.r(s_r, side);
-    const Vec3 qh = (nu + om.cross(r) + rt.dr(s_r, side)).normalized();
+    const Vec3& r = slot_r(slot, i);
+    const Vec3 qh = (nu + om.cross(r) + slot_dr(slot, i)).normalized();
     Vec6 g;
     g << qh, r.cross(qh);
     Aj.col(kT + j) += Fx * (Z * (-count[i] * g));
