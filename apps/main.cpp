@@ -7,12 +7,9 @@
 
 #include "apps/cli_util.hpp"
 #include "apps/commands.hpp"
-#include "common/blas_threads.hpp"
 #include "common/error.hpp"
 
 int main(int argc, char** argv) {
-  // No idle BLAS server thread spinning beside the solver threads (common/blas_threads.hpp).
-  tcasim::limit_blas_threads();
   CLI::App app{"tcasim: kinetostatics of soft robots actuated by twisted-and-coiled actuators"};
   app.require_subcommand(1);
   tcasim::app::add_tca_command(app);

@@ -27,7 +27,8 @@ tcasim_require(SUNDIALS_FOUND "SUNDIALS 6.4" libsundials-dev)
 find_package(Threads REQUIRED)
 
 include(TcasimSuiteSparse)
-tcasim_require(TcasimSuiteSparse_FOUND "SuiteSparse (UMFPACK, KLU, CHOLMOD)" libsuitesparse-dev)
+tcasim_require(TcasimSuiteSparse_KLU_FOUND "SuiteSparse (KLU)" libsuitesparse-dev)
+tcasim_require(TcasimSuiteSparse_UMFPACK_FOUND "SuiteSparse (UMFPACK, CHOLMOD)" libsuitesparse-dev)
 
 if(TCASIM_BUILD_TESTS)
   find_package(GTest QUIET)

@@ -9,6 +9,8 @@
 #   <prefix>/lib/libtcasim_*.a             the libraries (.so with -DBUILD_SHARED_LIBS=ON; the
 #                                          installed ones and the program find each other
 #                                          through a relative RPATH, $ORIGIN)
+#   <prefix>/lib/tcasim/libtcasim_umfpack.so  the beam FE's UMFPACK back end, a plugin loaded at
+#                                          run time (beam_fe.hpp: umfpack_plugin_candidates)
 #   <prefix>/lib/cmake/tcasim/             tcasimConfig.cmake, version file, targets
 #   <prefix>/share/tcasim/materials/       shipped material laws (common/data_dir.hpp)
 #   <prefix>/share/tcasim/scenarios/       shipped scenarios
@@ -71,6 +73,7 @@ if(TCASIM_BUILD_TESTS)
            COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
                    -DWORK_DIR=${PROJECT_BINARY_DIR}/package-test "-DGENERATOR=${CMAKE_GENERATOR}"
                    -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DBUILD_TYPE=$<CONFIG>
+                   -DPLUGIN=${TCASIM_INSTALL_PLUGINDIR}/$<TARGET_FILE_NAME:tcasim_umfpack>
                    -P ${PROJECT_SOURCE_DIR}/cmake/TcasimPackageTest.cmake)
   set_tests_properties(package_install_and_consume PROPERTIES LABELS package TIMEOUT 300)
 endif()

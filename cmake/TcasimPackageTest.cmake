@@ -2,8 +2,9 @@
 # configures and builds examples/solve_scenario against it (find_package(tcasim)), installs
 # the example into the same prefix and runs it there: it must solve the shipped scenario
 # and find the shipped materials in the installed data folder, not in the source tree.
-# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE.
-foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER BUILD_TYPE)
+# The installed tcasim loads the installed UMFPACK plugin (PLUGIN: its path under the prefix).
+# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE, PLUGIN.
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER BUILD_TYPE PLUGIN)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "TcasimPackageTest.cmake: -D${var}=... is required")
   endif()
@@ -23,7 +24,8 @@ file(REMOVE_RECURSE "${WORK_DIR}")
 
 run("installing the build" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
 foreach(file include/tcasim/tcasim/tcasim.hpp lib/cmake/tcasim/tcasimConfig.cmake
-             lib/cmake/tcasim/tcasimConfigVersion.cmake share/tcasim/materials bin/tcasim)
+             lib/cmake/tcasim/tcasimConfigVersion.cmake share/tcasim/materials bin/tcasim
+             ${PLUGIN})
   if(NOT EXISTS "${prefix}/${file}")
     file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
     message(FATAL_ERROR "the install lacks ${file}; it holds:\n${installed}")
@@ -54,4 +56,20 @@ run("running the installed tcasim" ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_D
     "${prefix}/bin/tcasim" solve "${prefix}/share/tcasim/scenarios/circular-manipulator.json")
 if(NOT run_output MATCHES "\"converged\": true")
   message(FATAL_ERROR "the installed tcasim did not solve the installed scenario:\n${run_output}")
+endif()
+
+# `--linear-solver umfpack` loads the installed plugin (found relative to the installed
+# program, ahead of the build tree's): the dynamic loader's log names the file it opened.
+file(REAL_PATH "${prefix}/${PLUGIN}" installed_plugin)
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_DIR --unset=TCASIM_PLUGIN_DIR
+                        LD_DEBUG=files "${prefix}/bin/tcasim" solve
+                        "${prefix}/share/tcasim/scenarios/circular-manipulator.json" --method fe
+                        --linear-solver umfpack
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE loader_log)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "\"converged\": true")
+  message(FATAL_ERROR "the installed tcasim did not solve with UMFPACK (${rc}):\n${out}\n${loader_log}")
+endif()
+string(FIND "${loader_log}" "file=${installed_plugin} " at)
+if(at LESS 0)
+  message(FATAL_ERROR "the installed tcasim did not load the installed plugin ${installed_plugin}")
 endif()

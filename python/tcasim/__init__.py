@@ -37,7 +37,22 @@ def _find_installed_data():
             return
 
 
+def _find_installed_plugins():
+    """Likewise the UMFPACK plugin installed with the package (<prefix>/lib/tcasim), unless
+    TCASIM_PLUGIN_DIR is set: the extension module, under lib/python3.X, is not where the
+    library looks for it by itself (docs/python.md)."""
+    if _os.environ.get("TCASIM_PLUGIN_DIR"):
+        return
+    here = _pathlib.Path(__file__).resolve().parent
+    for prefix in list(here.parents)[:5]:
+        plugins = prefix / "lib" / "tcasim"
+        if (plugins / "libtcasim_umfpack.so").is_file() and (prefix / "share" / "tcasim").is_dir():
+            _os.environ["TCASIM_PLUGIN_DIR"] = str(plugins)
+            return
+
+
 _find_installed_data()
+_find_installed_plugins()
 
 from ._errors import DomainError, InputError, SolverError  # noqa: E402
 from ._tcasim import (  # noqa: E402

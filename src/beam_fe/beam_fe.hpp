@@ -34,7 +34,8 @@ enum class Integration {
   kFull,     ///< p + 1 Gauss points (2 for linear, 3 for quadratic): locks on slender rods
 };
 
-/// Sparse direct solver for the (non-symmetric) Newton systems.
+/// Sparse direct solver for the (non-symmetric) Newton systems. UMFPACK lives in a plugin,
+/// libtcasim_umfpack.so, loaded at its first use (load_linear_solver).
 enum class LinearSolver { kKlu, kUmfpack, kSparseLu };
 
 /// Discretization and solver settings.
@@ -275,7 +276,24 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
 
 /// Parses "reduced"/"full" (InputError naming `integration` otherwise).
 Integration parse_integration(const std::string& text);
-/// Parses "klu"/"umfpack"/"sparselu" (InputError naming `linear_solver` otherwise).
+/// Parses "klu"/"umfpack"/"sparselu" (InputError naming `linear_solver` otherwise) and loads
+/// the back end it names (load_linear_solver), so a missing plugin is reported here.
 LinearSolver parse_linear_solver(const std::string& text);
+
+/// Folders searched for the UMFPACK plugin libtcasim_umfpack.so, in order:
+///  1. the environment variable TCASIM_PLUGIN_DIR, when set and non-empty (then the only one);
+///  2. the installed plugin folder relative to the program or shared library holding this
+///     code: <its folder>/../lib/tcasim for a program in <prefix>/bin (and the build tree's
+///     bin/), <its folder>/tcasim for a library in <prefix>/lib (the relative paths the build
+///     was configured with);
+///  3. <CMAKE_INSTALL_PREFIX>/lib/tcasim of the configured install prefix;
+///  4. the build tree's lib/tcasim (a test or the Python module run from the build tree).
+std::vector<std::string> umfpack_plugin_candidates();
+
+/// Loads the back end of `kind` unless it is built in or already loaded: the UMFPACK plugin
+/// from the first candidate folder it loads from (umfpack_plugin_candidates). Thread-safe.
+/// InputError `linear_solver = umfpack needs the UMFPACK plugin ...` naming every path tried
+/// and the loader's reason when it cannot be loaded.
+void load_linear_solver(LinearSolver kind);
 
 }  // namespace tcasim::beam_fe

@@ -554,7 +554,10 @@ Integration parse_integration(const std::string& text) {
 
 LinearSolver parse_linear_solver(const std::string& text) {
   if (text == "klu") return LinearSolver::kKlu;
-  if (text == "umfpack") return LinearSolver::kUmfpack;
+  if (text == "umfpack") {
+    load_linear_solver(LinearSolver::kUmfpack);
+    return LinearSolver::kUmfpack;
+  }
   if (text == "sparselu") return LinearSolver::kSparseLu;
   throw InputError("linear_solver", text, "must be `klu`, `umfpack` or `sparselu`");
 }

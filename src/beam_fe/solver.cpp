@@ -2,14 +2,16 @@
 #include <fmt/format.h>
 
 #include <Eigen/SparseLU>
-#include <Eigen/UmfPackSupport>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "beam_fe/beam_fe.hpp"
+#include "beam_fe/umfpack_loader.hpp"
 #include "common/error.hpp"
 
 extern "C" {
@@ -85,20 +87,47 @@ class KluRefactoring {
   double rcond_full_ = 0.0;
 };
 
+/// UMFPACK through its plugin (umfpack_plugin_abi.hpp): one factorization object, which
+/// analyses the pattern on its first factorization.
+class UmfpackFactorization {
+ public:
+  /// Loads the plugin if needed (InputError when it cannot be loaded).
+  UmfpackFactorization() : plugin_(umfpack_plugin()), lu_(plugin_.create()) {
+    if (lu_ == nullptr) throw std::bad_alloc();
+  }
+  UmfpackFactorization(const UmfpackFactorization&) = delete;
+  UmfpackFactorization& operator=(const UmfpackFactorization&) = delete;
+  ~UmfpackFactorization() { plugin_.destroy(lu_); }
+  /// Factorizes K (compressed); false on failure.
+  bool factorize(const SpMat& K) {
+    assert(K.isCompressed());
+    return plugin_.factorize(lu_, static_cast<int>(K.rows()), static_cast<int>(K.nonZeros()),
+                             K.outerIndexPtr(), K.innerIndexPtr(), K.valuePtr()) == 1;
+  }
+  /// Solves K x = b with the last factorization; false on failure.
+  bool solve(const VectorXd& b, VectorXd& x) {
+    x.resize(b.size());
+    return plugin_.solve(lu_, static_cast<int>(b.size()), b.data(), x.data()) == 1;
+  }
+
+ private:
+  const tcasim_umfpack_plugin& plugin_;
+  void* lu_;
+};
+
 /// The three sparse LU back ends behind one interface; the pattern is analysed once.
 class LinearSystem {
  public:
-  explicit LinearSystem(LinearSolver kind) : kind_(kind) {}
+  explicit LinearSystem(LinearSolver kind) : kind_(kind) {
+    if (kind_ == LinearSolver::kUmfpack) umf_ = std::make_unique<UmfpackFactorization>();
+  }
   /// Factorizes K (analysing its pattern on the first call); false on failure.
   bool factorize(SpMat& K) {
     switch (kind_) {
       case LinearSolver::kKlu:
         return klu_.factorize(K);
       case LinearSolver::kUmfpack:
-        if (!analysed_) umf_.analyzePattern(K);
-        analysed_ = true;
-        umf_.factorize(K);
-        return umf_.info() == Eigen::Success;
+        return umf_->factorize(K);
       case LinearSolver::kSparseLu:
         if (!analysed_) slu_.analyzePattern(K);
         analysed_ = true;
@@ -113,8 +142,7 @@ class LinearSystem {
       case LinearSolver::kKlu:
         return klu_.solve(b, x);
       case LinearSolver::kUmfpack:
-        x = umf_.solve(b);
-        return umf_.info() == Eigen::Success;
+        return umf_->solve(b, x);
       case LinearSolver::kSparseLu:
         x = slu_.solve(b);
         return slu_.info() == Eigen::Success;
@@ -126,7 +154,7 @@ class LinearSystem {
   LinearSolver kind_;
   bool analysed_ = false;
   KluRefactoring klu_;
-  Eigen::UmfPackLU<SpMat> umf_;
+  std::unique_ptr<UmfpackFactorization> umf_;  ///< kUmfpack only
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu_;
 };
 

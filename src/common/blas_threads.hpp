@@ -5,6 +5,8 @@
 /// 0.1 s, before it sleeps. tcasim's factorizations are small and its parallel work runs on its
 /// own threads (`tcasim sweep --jobs N`), so that spinning thread only takes a core away from
 /// them: in a 1000-point shooting sweep (about 0.1 s of work) it ate most of one of two cores.
+/// Only the UMFPACK plugin of the beam FE (beam_fe/umfpack_plugin_abi.hpp) brings OpenBLAS into
+/// tcasim's programs, at its dlopen; its loader calls limit_blas_threads_of() right after.
 #include <string>
 
 namespace tcasim {
@@ -23,5 +25,11 @@ struct BlasThreads {
 /// thread exists; results do not change (OpenBLAS threads only split whole blocks of a product,
 /// and the matrices tcasim factorizes are below its threading threshold anyway).
 BlasThreads limit_blas_threads();
+
+/// limit_blas_threads() for the OpenBLAS among the dependencies of `library`, a handle of
+/// dlopen: a library opened with RTLD_LOCAL keeps its symbols out of the global scope that
+/// limit_blas_threads() searches. Call it right after dlopen (OpenBLAS starts its threads
+/// while it is loaded), before the library is used.
+BlasThreads limit_blas_threads_of(void* library);
 
 }  // namespace tcasim

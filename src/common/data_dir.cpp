@@ -16,18 +16,13 @@
 
 namespace tcasim {
 
-namespace {
-
-/// Folder of the program or shared library this function was linked into (empty when it
-/// cannot be told). The dynamic loader names a shared library (link_map::l_name); the main
-/// program it leaves unnamed (dladdr would give argv[0], which need not be a path), and
-/// /proc/self/exe names it.
-std::filesystem::path own_module_folder() {
+// The dynamic loader names a shared library (link_map::l_name); the main program it leaves
+// unnamed (dladdr would give argv[0], which need not be a path), and /proc/self/exe names it.
+std::filesystem::path module_folder(const void* address) {
   Dl_info info{};
   link_map* map = nullptr;
   std::string module;
-  if (dladdr1(reinterpret_cast<void*>(&own_module_folder), &info, reinterpret_cast<void**>(&map),
-              RTLD_DL_LINKMAP) != 0 &&
+  if (dladdr1(address, &info, reinterpret_cast<void**>(&map), RTLD_DL_LINKMAP) != 0 &&
       map != nullptr && map->l_name != nullptr) {
     module = map->l_name;
   }
@@ -38,8 +33,6 @@ std::filesystem::path own_module_folder() {
   return ec ? std::filesystem::path() : path.parent_path();
 }
 
-}  // namespace
-
 std::vector<std::string> data_directory_candidates() {
   std::vector<std::string> out;
   const auto add = [&out](const std::string& dir) {
@@ -48,7 +41,9 @@ std::vector<std::string> data_directory_candidates() {
   if (const char* env = std::getenv("TCASIM_DATA_DIR"); env != nullptr && *env != '\0') {
     out.emplace_back(env);
   }
-  if (const std::filesystem::path own = own_module_folder(); !own.empty()) {
+  if (const std::filesystem::path own =
+          module_folder(reinterpret_cast<const void*>(&data_directory_candidates));
+      !own.empty()) {
     add((own / TCASIM_BINDIR_TO_DATA_DIR).lexically_normal().string());
     add((own / TCASIM_LIBDIR_TO_DATA_DIR).lexically_normal().string());
   }

@@ -1,9 +1,15 @@
 #pragma once
 /// Where the shipped data (materials/, scenarios/) is found at run time.
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace tcasim {
+
+/// Folder of the program or shared library whose code holds `address` (a function of it),
+/// empty when it cannot be told: the folder that installed data and plugins are found
+/// relative to.
+std::filesystem::path module_folder(const void* address);
 
 /// The folders data_directory() considers, in order:
 ///  1. the environment variable TCASIM_DATA_DIR, when set and non-empty (taken as given);

@@ -114,23 +114,34 @@ double above_absolute_zero_K(double t_degC, const std::string& key) {
 /// Checks that E, G and the diameter ratio are positive at `t_K` (a material law that
 /// is not cannot be evaluated there).
 void check_material_positive_at(const tca::Material& m, double t_K, const std::string& key) {
+  // Called for every sampled temperature of every material: the messages (key paths and
+  // formatted rules) are built only when a check fails.
   const double t_degC = units::K_to_degC(t_K);
   const double E = m.youngs_modulus_Pa.value(t_K);
   const double G = m.shear_modulus_Pa.value(t_K);
-  require(E > 0.0, join_path(key, "youngs_modulus_Pa"), E,
-          fmt::format("must be positive (value at {:.10g} degC)", t_degC));
-  require(G > 0.0, join_path(key, "shear_modulus_Pa"), G,
-          fmt::format("must be positive (value at {:.10g} degC)", t_degC));
+  if (!(E > 0.0)) {
+    throw_input_error(join_path(key, "youngs_modulus_Pa"), E,
+                      fmt::format("must be positive (value at {:.10g} degC)", t_degC));
+  }
+  if (!(G > 0.0)) {
+    throw_input_error(join_path(key, "shear_modulus_Pa"), G,
+                      fmt::format("must be positive (value at {:.10g} degC)", t_degC));
+  }
   if (m.diameter.type == tca::DiameterLaw::Type::kLinearExpansion) {
     const double ratio = 1.0 + m.diameter.linear_expansion_1_K * (t_K - m.reference_temperature_K);
-    require(ratio > 0.0, join_path(key, "diameter.linear_expansion_1_K"),
-            m.diameter.linear_expansion_1_K,
-            fmt::format("gives a non-positive diameter ratio {} at {:.10g} degC", ratio, t_degC));
+    if (!(ratio > 0.0)) {
+      throw_input_error(
+          join_path(key, "diameter.linear_expansion_1_K"), m.diameter.linear_expansion_1_K,
+          fmt::format("gives a non-positive diameter ratio {} at {:.10g} degC", ratio, t_degC));
+    }
   } else {
     const double ratio = m.diameter.ratio_polynomial.value(t_K) /
                          m.diameter.ratio_polynomial.value(m.reference_temperature_K);
-    require(ratio > 0.0, join_path(key, "diameter.ratio_polynomial_degC"), ratio,
-            fmt::format("is the diameter ratio at {:.10g} degC; it must be positive", t_degC));
+    if (!(ratio > 0.0)) {
+      throw_input_error(
+          join_path(key, "diameter.ratio_polynomial_degC"), ratio,
+          fmt::format("is the diameter ratio at {:.10g} degC; it must be positive", t_degC));
+    }
   }
 }
 

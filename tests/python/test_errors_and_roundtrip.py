@@ -167,3 +167,23 @@ def test_the_gil_is_released_during_solves():
 
 # Elements of the first FE solve of the GIL test (scaled up to a solve of about 0.3 s).
 GIL_TEST_ELEMENTS = 400
+
+
+def test_a_missing_umfpack_plugin_names_the_keyword_and_the_path(tmp_path):
+    # A fresh interpreter: the plugin is loaded once per process, and this one may hold it.
+    import os
+    import subprocess
+    import sys
+    code = ("import tcasim, sys\n"
+            "try:\n"
+            f"    tcasim.solve({str(BASE)!r}, method='fe', linear_solver='umfpack')\n"
+            "except tcasim.InputError as e:\n"
+            "    print(e.key); print(e.value); print(e.rule); sys.exit(0)\n"
+            "sys.exit('no InputError')\n")
+    env = dict(os.environ, TCASIM_PLUGIN_DIR=str(tmp_path))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    key, value, rule = out.stdout.splitlines()[:3]
+    assert (key, value) == ("linear_solver", "umfpack")
+    assert f"{tmp_path}/libtcasim_umfpack.so: cannot open shared object file" in rule
+    assert "TCASIM_PLUGIN_DIR" in rule
