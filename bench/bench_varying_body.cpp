@@ -5,7 +5,8 @@
 //    of the reference curvature at L/2), the same tendons and gravity.
 // Before the benchmarks, main() prints for each body the RK4 steps at which the tip error
 // against a tight reference (RK4, 2048 steps) falls below kTipTolerance, and that error; the
-// benchmarks run each body at its own step count (the same accuracy).
+// benchmarks run each body at its own step count (the same accuracy), each solve with the one
+// solver (`cold`) or a new solver each time (`new_solver`).
 // Run: build/bench/bench_varying_body --benchmark_repetitions=11
 //        --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -67,6 +68,22 @@ void BM_ColdSolve(benchmark::State& state, bool tapered, int steps) {
   state.counters["steps"] = steps;
 }
 
+/// The same cold solve with a new solver each time (what cosserat::solve does): adds the
+/// solver's construction and, for the varying body, the first evaluation of its properties
+/// at each grid point (RodRhs::LocalMemo), which the solves above find stored.
+void BM_NewSolverColdSolve(benchmark::State& state, bool tapered, int steps) {
+  const rod::RodModel m = rod::parse_scenario(tentacle(tapered));
+  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  for (auto _ : state) {
+    cosserat::ShootingSolver solver(m, rk4(steps));
+    cosserat::Solution sol;
+    const cosserat::Summary s = solver.solve(act, sol);
+    if (!s.converged()) state.SkipWithError("not converged");
+    benchmark::DoNotOptimize(sol.unknowns.data());
+  }
+  state.counters["steps"] = steps;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,6 +92,12 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("uniform_tentacle/cold", BM_ColdSolve, false, uniform_steps)
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("tapered_tentacle/cold", BM_ColdSolve, true, tapered_steps)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("uniform_tentacle/new_solver", BM_NewSolverColdSolve, false,
+                               uniform_steps)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("tapered_tentacle/new_solver", BM_NewSolverColdSolve, true,
+                               tapered_steps)
       ->Unit(benchmark::kMicrosecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

@@ -95,10 +95,15 @@ void RodProblem::set_omega_star_fraction(double mu) {
 
 void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
                             double& wf) const {
+  model_properties(s, side, Kn, Kw, ws, wf);
+  if (omega_star_fraction != 1.0) ws = omega_star + omega_star_fraction * (ws - omega_star);
+}
+
+void RodProblem::model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
+                                  double& wf) const {
   Kn = model.shear_extension_stiffness(s, side);
   Kw = model.bending_torsion_stiffness(s, side);
   ws = model.reference_curvature_at(s, side);
-  if (omega_star_fraction != 1.0) ws = omega_star + omega_star_fraction * (ws - omega_star);
   wf = rho_A_ref > 0.0 ? model.mass_per_length_kg_m(s, side) / rho_A_ref : 1.0;
 }
 

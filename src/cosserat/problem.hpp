@@ -77,6 +77,9 @@ struct RodProblem {
   bool to_tip(int i) const { return span_hi[static_cast<std::size_t>(i)] == L; }
   /// The stiffnesses, omega* and weight factor at s (one-sided limit `side` at a jump).
   void properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
+  /// properties() of the model itself: omega* without the homotopy below (mu = 1).
+  void model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
+                        double& wf) const;
 
   /// Homotopy in the variation of omega* along s (the shooting solver's cold start of a body
   /// whose reference curvature varies): with fraction mu, the IVP and the tip conditions see

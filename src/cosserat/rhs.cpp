@@ -1,6 +1,8 @@
 #include "cosserat/rhs.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "cosserat/string_system.hpp"
@@ -15,6 +17,7 @@ RodRhs::RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> l, bool sensitivi
   cT.assign(n_act, 0.0);
   scaled_segments.resize(n_act);
   cache.resize(n_act);
+  uniform_local = {K_nu, K_omega, K_nu_inv, K_omega_inv, omega_star, 1.0};
   if (!knots.empty()) {
     pieces.knots = knots;
     pieces.enter = [this](double lo, double hi) {
@@ -32,13 +35,64 @@ RodRhs::RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> l, bool sensitivi
   layout->bind(*this, with_sensitivities);
 }
 
+RodRhs::Local RodRhs::model_local(double s, rod::Side side) const {
+  Local k;
+  model_properties(s, side, k.Kn, k.Kw, k.ws, k.wf);
+  model.property_slopes(s, side, k.dKn, k.dKw, k.dws);
+  k.Kn_inv = k.Kn.cwiseInverse();
+  k.Kw_inv = k.Kw.cwiseInverse();
+  return k;
+}
+
+std::size_t RodRhs::LocalMemo::slot_of(double s, rod::Side side) const {
+  std::uint64_t bits;
+  std::memcpy(&bits, &s, sizeof bits);
+  // Fibonacci hashing (the top bits of the product with 2^64 / golden ratio: neighbouring
+  // grid points differ in few mantissa bits); the side flips the lowest bit.
+  bits = (bits ^ (side == rod::Side::kLeft ? 1u : 0u)) * 0x9E3779B97F4A7C15ull;
+  return static_cast<std::size_t>(bits >> (64 - slot_bits_));
+}
+
+const RodRhs::Local* RodRhs::LocalMemo::find(double s, rod::Side side) const {
+  if (entries_.empty()) return nullptr;
+  const std::size_t mask = slot_.size() - 1;
+  for (std::size_t i = slot_of(s, side);; i = (i + 1) & mask) {
+    const int e = slot_[i];
+    if (e < 0) return nullptr;
+    const Entry& entry = entries_[static_cast<std::size_t>(e)];
+    if (entry.s == s && entry.side == side) return &entry.k;
+  }
+}
+
+const RodRhs::Local& RodRhs::LocalMemo::insert(double s, rod::Side side, const Local& k) {
+  if (entries_.size() >= kMaxEntries) {
+    overflow_ = k;
+    return overflow_;
+  }
+  entries_.push_back({s, side, k});
+  const auto place = [this](std::size_t e) {
+    const std::size_t mask = slot_.size() - 1;
+    std::size_t i = slot_of(entries_[e].s, entries_[e].side);
+    while (slot_[i] >= 0) i = (i + 1) & mask;
+    slot_[i] = static_cast<int>(e);
+  };
+  if (2 * entries_.size() > slot_.size()) {  // load above 1/2: double (from 256) and rehash
+    slot_bits_ = std::max(8, slot_bits_ + 1);
+    slot_.assign(std::size_t{1} << slot_bits_, -1);
+    for (std::size_t e = 0; e < entries_.size(); ++e) place(e);
+  } else {
+    place(entries_.size() - 1);
+  }
+  return entries_.back().k;
+}
+
 // docs/conventions.md "Body-frame ODEs solved by the shooting solver".
 void RodRhs::eval_rhs(double s, const Eigen::VectorXd& yy, Eigen::VectorXd& dy) const {
   const Eigen::Map<const Mat3> R(yy.data() + kR);
   const Vec3 e = yy.segment<3>(kNu);  // nu - nu* (shooting.hpp layout)
   const Vec3 nu = nu_star + e;
   const Vec3 omega = yy.segment<3>(kOmega);
-  Local k = local(s);
+  const Local& k = local(s);
   // [Pawlowski2019] Eqs. (9)-(10): n_B = K_nu (nu - nu*), m_B = K_omega (omega - omega*).
   const Vec3 n_B = k.Kn.cwiseProduct(e);
   const Vec3 m_B = k.Kw.cwiseProduct(omega - k.ws);
@@ -111,7 +165,7 @@ void RodRhs::eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd&
   const Vec3 e(yy + kNu);  // nu - nu*
   const Vec3 nu = nu_star + e;
   const Vec3 omega(yy + kOmega);
-  const Local k = local(s);
+  const Local& k = local(s);
   const Vec3 f_W = uniform ? f_ext_W : Vec3(k.wf * f_ext_W);
   const Vec3 n_B = k.Kn.cwiseProduct(e);
   const Vec3 m_B = k.Kw.cwiseProduct(omega - k.ws);

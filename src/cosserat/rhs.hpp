@@ -47,17 +47,58 @@ struct RodRhs : RodProblem {
     double wf = 1.0;
     Vec3 dKn = Vec3::Zero(), dKw = Vec3::Zero(), dws = Vec3::Zero();
   };
-  Local local(double s) const {
-    if (uniform) return {K_nu, K_omega, K_nu_inv, K_omega_inv, omega_star, 1.0};
-    Local k;
+  /// local(s) of a varying body reads the memo below (filled by model_local on a miss).
+  /// The reference stays valid until the next call of local().
+  const Local& local(double s) const {
+    if (uniform) return uniform_local;
     const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
-    properties(s, side, k.Kn, k.Kw, k.ws, k.wf);
-    model.property_slopes(s, side, k.dKn, k.dKw, k.dws);
-    if (omega_star_fraction != 1.0) k.dws *= omega_star_fraction;
-    k.Kn_inv = k.Kn.cwiseInverse();
-    k.Kw_inv = k.Kw.cwiseInverse();
-    return k;
+    const Local* k = memo.find(s, side);
+    if (k == nullptr) k = &memo.insert(s, side, model_local(s, side));
+    if (omega_star_fraction == 1.0) return *k;
+    // The homotopy in omega*'s variation (RodProblem::set_omega_star_fraction), applied as
+    // RodProblem::properties does: omega*_mu = omega*(0) + mu (omega*(s) - omega*(0)).
+    homotopy_local = *k;
+    homotopy_local.ws = omega_star + omega_star_fraction * (k->ws - omega_star);
+    homotopy_local.dws *= omega_star_fraction;
+    return homotopy_local;
   }
+  /// The model's Local at s on `side` (omega* and its slope at mu = 1): the profile
+  /// evaluations local() memoizes.
+  Local model_local(double s, rod::Side side) const;
+
+  /// The Locals of a varying body at the (s, side) the integrations visit. Each level
+  /// integrates on a fixed grid (fixed-step methods), so every IVP after the first finds its
+  /// stages here instead of evaluating the profiles again. An entry is the model's exact
+  /// value at its s (no interpolation): a hit returns the same bits as an evaluation.
+  /// Open addressing on the bits of s, the table doubling at load 1/2; beyond kMaxEntries
+  /// distinct points (CVODE's adaptive s, very fine grids) further points are evaluated
+  /// without being stored.
+  class LocalMemo {
+   public:
+    /// The entry of (s, side), or nullptr.
+    const Local* find(double s, rod::Side side) const;
+    /// Stores k as the entry of (s, side) (absent before) and returns the entry; once the
+    /// memo is full, returns a copy that the next insert() overwrites.
+    const Local& insert(double s, rod::Side side, const Local& k);
+    /// The number of (s, side) held.
+    std::size_t size() const { return entries_.size(); }
+
+   private:
+    static constexpr std::size_t kMaxEntries = 4096;
+    std::size_t slot_of(double s, rod::Side side) const;
+    struct Entry {
+      double s;
+      rod::Side side;
+      Local k;
+    };
+    std::vector<int> slot_;  // index into entries_, -1 if free; size a power of two
+    int slot_bits_ = 0;
+    std::vector<Entry> entries_;
+    Local overflow_;  // the value insert() returns once the memo is full
+  };
+  mutable LocalMemo memo;
+  Local uniform_local;           // a uniform body's Local (the constant members)
+  mutable Local homotopy_local;  // local() during the homotopy in omega* (mu != 1)
 
   /// A body varying along s: the pieces of the IVP (nullptr for a uniform body).
   const internal::PieceHooks* piece_hooks() const { return knots.empty() ? nullptr : &pieces; }
