@@ -17,7 +17,8 @@
 /// (N_B, M_B) at s = 0 and the whole state at the start of every other interval; residual:
 /// continuity at each interior node and the tip balance. Newton (chord iterations with the
 /// last factorization; a fresh Jacobian when they contract slowly) with the exact Jacobian
-/// (forward sensitivities of each interval), solved by Eigen's SparseLU.
+/// (forward sensitivities of each interval), factorized densely (partial pivoting) up to
+/// kDenseUnknowns unknowns (dynamics_impl.hpp), by Eigen's SparseLU above.
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
@@ -79,7 +80,7 @@ struct DynamicsSummary {
     kConverged,         ///< ||r_scaled||_inf <= DynamicsOptions::tolerance
     kMaxIterations,     ///< max_iterations iterations with ||r_scaled||_inf > tolerance
     kNotConverging,     ///< a fresh Jacobian and 6 halvings of its step gave no decrease
-    kSingularJacobian,  ///< SparseLU failed to factorize the Jacobian
+    kSingularJacobian,  ///< the LU factorization of the Jacobian failed (or a step not finite)
     kNonFinite,         ///< the state became non-finite (or a section's constitutive
                         ///< solve failed) at the starting point
     kNotRun,

@@ -44,7 +44,9 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
       need_fresh = false;
       if (!lu_valid) {
         sum.status = DynamicsSummary::Status::kSingularJacobian;
-        sum.message = "SparseLU could not factorize the multiple-shooting Jacobian";
+        sum.message = dense ? "the dense LU factorization of the multiple-shooting Jacobian is "
+                                    "singular (a pivot below 1e-14 of the largest)"
+                                  : "SparseLU could not factorize the multiple-shooting Jacobian";
         return sum;
       }
     }
