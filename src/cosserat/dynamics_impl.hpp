@@ -56,6 +56,10 @@ constexpr double kEulerB[4] = {1.0, 0.0, 0.0, 0.0};
 constexpr int kDenseUnknowns = 300;
 /// Chord iterations with one factorization before a fresh Jacobian is computed.
 constexpr int kStaleIterations = 6;
+/// The sections' constitutive solve with strings (rhs()) on the residual-only path stops after a
+/// Newton correction below this relative size (the next one, of order its square, would be at
+/// round-off).
+constexpr double kQuadraticStop = 1e-8;
 /// Highest order of the extrapolated start of a time step (RodDynamics::Impl::predict): the
 /// polynomial through the last kMaxPredictorOrder + 1 solutions. Measured on the released steel
 /// cantilever (dt = 2 ms): Newton iterations per step fall from 5.1 (order 2 fixed) to 2.6 with

@@ -76,9 +76,15 @@ bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
       e -= dx.head<3>();
       om -= dx.tail<3>();
       if (!dx.allFinite()) return false;
-      done = gnorm <= 1e-15 * load ||
-             dx.head<3>().lpNorm<Eigen::Infinity>() + L * dx.tail<3>().lpNorm<Eigen::Infinity>() <=
-                 1e-15 * (e.lpNorm<Eigen::Infinity>() + L * om.lpNorm<Eigen::Infinity>() + 1e-300);
+      const double step = dx.head<3>().lpNorm<Eigen::Infinity>() +
+                          L * dx.tail<3>().lpNorm<Eigen::Infinity>();
+      const double size = e.lpNorm<Eigen::Infinity>() + L * om.lpNorm<Eigen::Infinity>() + 1e-300;
+      // Newton converges quadratically here: after a correction of relative size d the next
+      // one is of order d^2, so without a Jacobian to form, a correction below
+      // kQuadraticStop (d^2 at round-off) ends the iteration one solve early; the Jacobian
+      // path keeps iterating to round-off so that Z is the factorization at the solution.
+      done = gnorm <= 1e-15 * load || step <= 1e-15 * size ||
+             (A == nullptr && step <= kQuadraticStop * size);
       if (done && A) {
         Z.setIdentity();
         sys.solve_in_place(Z);
