@@ -4,7 +4,6 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -75,19 +74,9 @@ std::vector<std::string> umfpack_plugin_candidates() {
   if (const char* env = std::getenv("TCASIM_PLUGIN_DIR"); env != nullptr && *env != '\0') {
     return {env};
   }
-  std::vector<std::string> out;
-  const auto add = [&out](const std::string& dir) {
-    if (std::find(out.begin(), out.end(), dir) == out.end()) out.push_back(dir);
-  };
-  if (const std::filesystem::path own =
-          module_folder(reinterpret_cast<const void*>(&umfpack_plugin_candidates));
-      !own.empty()) {
-    add((own / TCASIM_BINDIR_TO_PLUGIN_DIR).lexically_normal().string());
-    add((own / TCASIM_LIBDIR_TO_PLUGIN_DIR).lexically_normal().string());
-  }
-  add(TCASIM_INSTALL_PLUGIN_DIR);
-  add(TCASIM_BUILD_PLUGIN_DIR);
-  return out;
+  return installed_folder_candidates(reinterpret_cast<const void*>(&umfpack_plugin_candidates),
+                                     TCASIM_BINDIR_TO_PLUGIN_DIR, TCASIM_LIBDIR_TO_PLUGIN_DIR,
+                                     TCASIM_INSTALL_PLUGIN_DIR, TCASIM_BUILD_PLUGIN_DIR);
 }
 
 const tcasim_umfpack_plugin& umfpack_plugin() {

@@ -33,22 +33,32 @@ std::filesystem::path module_folder(const void* address) {
   return ec ? std::filesystem::path() : path.parent_path();
 }
 
-std::vector<std::string> data_directory_candidates() {
+std::vector<std::string> installed_folder_candidates(const void* address,
+                                                     const std::string& bin_relative,
+                                                     const std::string& lib_relative,
+                                                     const std::string& install_dir,
+                                                     const std::string& build_dir) {
   std::vector<std::string> out;
   const auto add = [&out](const std::string& dir) {
     if (std::find(out.begin(), out.end(), dir) == out.end()) out.push_back(dir);
   };
+  if (const std::filesystem::path own = module_folder(address); !own.empty()) {
+    add((own / bin_relative).lexically_normal().string());
+    add((own / lib_relative).lexically_normal().string());
+  }
+  add(install_dir);
+  add(build_dir);
+  return out;
+}
+
+std::vector<std::string> data_directory_candidates() {
+  std::vector<std::string> out = installed_folder_candidates(
+      reinterpret_cast<const void*>(&data_directory_candidates), TCASIM_BINDIR_TO_DATA_DIR,
+      TCASIM_LIBDIR_TO_DATA_DIR, TCASIM_INSTALL_DATA_DIR, TCASIM_BUILD_DATA_DIR);
   if (const char* env = std::getenv("TCASIM_DATA_DIR"); env != nullptr && *env != '\0') {
-    out.emplace_back(env);
+    out.erase(std::remove(out.begin(), out.end(), std::string(env)), out.end());
+    out.insert(out.begin(), env);
   }
-  if (const std::filesystem::path own =
-          module_folder(reinterpret_cast<const void*>(&data_directory_candidates));
-      !own.empty()) {
-    add((own / TCASIM_BINDIR_TO_DATA_DIR).lexically_normal().string());
-    add((own / TCASIM_LIBDIR_TO_DATA_DIR).lexically_normal().string());
-  }
-  add(TCASIM_INSTALL_DATA_DIR);
-  add(TCASIM_BUILD_DATA_DIR);
   return out;
 }
 

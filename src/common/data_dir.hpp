@@ -11,6 +11,16 @@ namespace tcasim {
 /// relative to.
 std::filesystem::path module_folder(const void* address);
 
+/// The installed-tree folders of a search, in order, duplicates dropped: <module>/bin_relative
+/// and <module>/lib_relative (module: module_folder(address), skipped when unknown), then
+/// `install_dir` and `build_dir`. The search for the data (below) and for plugins
+/// (beam_fe/umfpack_loader) each put their environment override in front.
+std::vector<std::string> installed_folder_candidates(const void* address,
+                                                     const std::string& bin_relative,
+                                                     const std::string& lib_relative,
+                                                     const std::string& install_dir,
+                                                     const std::string& build_dir);
+
 /// The folders data_directory() considers, in order:
 ///  1. the environment variable TCASIM_DATA_DIR, when set and non-empty (taken as given);
 ///  2. the installed package's data folder relative to the program or shared library that
