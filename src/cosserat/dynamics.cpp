@@ -343,13 +343,18 @@ void RodDynamics::Impl::predict(int p, Eigen::VectorXd& out) const {
 }
 
 int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) {
-  // predict()'s numbers, order by order, in the kept workspace.
+  // predict(p) order by order as the partial sums of the backward differences (the same
+  // polynomials as predict()'s weights; only the order chosen is taken from here).
   Eigen::VectorXd& e = ws_predict_;
   int best = 0;
   double best_error = HUGE_VAL;
-  const int p_max = std::min(kMaxPredictorOrder, history_steps);
+  const int p_max = std::min<int>(kMaxPredictorOrder, static_cast<int>(z_diff.size()) - 1);
   for (int p = 0; p <= p_max; ++p) {
-    predict(p, e);
+    if (p == 0) {
+      e = z_diff[0];
+    } else {
+      e += z_diff[p];
+    }
     const double err = ((e - z_new).array() * inv_scale_z_).abs().maxCoeff();
     if (err < best_error) {
       best_error = err;
@@ -357,6 +362,18 @@ int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) {
     }
   }
   return best;
+}
+
+void RodDynamics::Impl::push_difference(const Eigen::VectorXd& z_new) {
+  // nabla^0 z_new = z_new, nabla^(j+1) z_new = nabla^j z_new - nabla^j z (the old table).
+  Eigen::VectorXd &carry = ws_carry_, &next = ws_next_diff_;
+  carry = z_new;
+  for (std::size_t j = 0; j < z_diff.size(); ++j) {
+    next = carry - z_diff[j];
+    z_diff[j].swap(carry);  // the new nabla^j; carry: the old one (not needed any more)
+    carry.swap(next);
+  }
+  if (static_cast<int>(z_diff.size()) <= kMaxPredictorOrder) z_diff.push_back(carry);
 }
 
 RodDynamics::RodDynamics(const rod::RodModel& model, const DynamicsOptions& options)
@@ -424,6 +441,7 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   if (!sum.converged()) return sum;
   d.z = zz;
   d.z_past.clear();
+  d.z_diff.assign(1, zz);
   d.predictor_order = 0;
   d.cur = d.trial;
   d.prev = d.trial;
@@ -515,6 +533,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     d.cur_t[i] = rt;
   }
   d.predictor_order = d.best_predictor_order(zz);
+  d.push_difference(zz);
   if (static_cast<int>(d.z_past.size()) < kMaxPredictorOrder) d.z_past.emplace_back();
   for (std::size_t j = d.z_past.size() - 1; j > 0; --j) d.z_past[j].swap(d.z_past[j - 1]);
   d.z_past[0].swap(d.z);

@@ -45,6 +45,24 @@ struct PointRates {
   Vec3 e = Vec3::Zero(), omega = Vec3::Zero(), q = Vec3::Zero(), w = Vec3::Zero();
 };
 
+/// df/dy of rhs() at one stage, kept in factors (the product with the sensitivities is about
+/// half the flops of the dense D x D matrix and skips its assembly):
+///   df/dy = A_direct + Fx Z (E_NM + sum_j v_j e_(kT + j)^T),
+/// A_direct the derivative at fixed strains xi = (e, omega) (3 x 3 blocks), Fx = df/dxi
+/// (D x 6), Z = dxi/d(N, M) from the section's constitutive law, E_NM the (N, M) rows of the
+/// state and v_j = -c_i (qh_i, r_i x qh_i) the strains' dependence on TCA tension j (zero
+/// where its string does not run).
+struct StageJacobian {
+  internal::Mat3 Om, hat_nu, B_NQ, B_NW, B_MW;  // hat(omega), hat(nu) and the inertia blocks
+  Vec3 nu, f_W;
+  internal::Mat6 Z;
+  Eigen::Matrix<double, Eigen::Dynamic, 6> Fx;
+  std::vector<internal::Vec6> v;
+  int kT = 0;
+  /// dK = (df/dy) dY (dY: D x m).
+  void apply(const Eigen::MatrixXd& dY, Eigen::MatrixXd& dK) const;
+};
+
 // Classical RK4: stage nodes c and the multipliers of the previous stage.
 constexpr double kStageC[4] = {0.0, 0.5, 0.5, 1.0};
 constexpr double kStageA[4] = {0.0, 0.5, 0.5, 1.0};
@@ -76,14 +94,17 @@ struct RodDynamics::Impl {
   // --- the discretization
   /// Right-hand side at arc length s of state y with the history of stage slot `slot`;
   /// the stage's strains and velocities are written to trial[slot]. With A: the Jacobian
-  /// df/dy (D x D). False when the section's constitutive solve fails or y is not finite.
-  bool rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy, Eigen::MatrixXd* A);
+  /// df/dy in its factors. False when the section's constitutive solve fails or y is not
+  /// finite.
+  bool rhs(double s, const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
+           dynamics::StageJacobian* A);
   /// The right-hand side of rhs() without the Jacobian, on raw arrays of D doubles and without
   /// allocations (the residual-only path of evaluate()). Strings under tension (the section's
   /// constitutive solve with the strings) are passed on to rhs().
   bool rhs_residual(double s, const double* y, int slot, double* dy);
-  /// Integrates interval k from y (its S RK4 steps), writing the grid states; Phi: the
-  /// sensitivity dy_end/dy0 (D x D) when non-null.
+  /// Integrates interval k from y (its S RK4 steps), writing the grid states; Phi: when
+  /// non-null, the sensitivity of y_end to node k's unknowns (column c: by state component
+  /// unknown_state(k, c); D x n0() at the base, D x D elsewhere).
   bool integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi);
   /// integrate_interval without sensitivities, by rhs_residual() (y: D doubles, in place).
   bool integrate_interval_residual(int k, double* y);
@@ -107,6 +128,11 @@ struct RodDynamics::Impl {
   /// set_loads(), before a solve).
   void set_section_constants();
   int n0() const { return 6 + n_tca; }  // unknowns at the base: N, M, TCA tensions
+  /// The state component of node k's unknown c: (N, M) then the TCA tensions at the base
+  /// (k = 0), the state itself elsewhere.
+  int unknown_state(int k, int c) const {
+    return k > 0 ? c : c < 6 ? dynamics::kN + c : kT + c - 6;
+  }
   int unknowns() const { return n0() + (M - 1) * D; }
   int slots() const { return 4 * N + 1; }  // 4 stages per step, then the tip point
   /// Body properties at stage slot `slot` (the tip point is slot 4 N).
@@ -190,6 +216,12 @@ struct RodDynamics::Impl {
   /// Earlier solutions, newest first (z_past[0] = z of the step before; at most
   /// kMaxPredictorOrder of them).
   std::vector<Eigen::VectorXd> z_past;
+  /// Backward differences of z (z_diff[j] = nabla^j z, j = 0 .. min(history_steps,
+  /// kMaxPredictorOrder)): predict(p) = sum_{j <= p} z_diff[j] (Newton's backward formula one
+  /// step ahead), which best_predictor_order() sums up order by order.
+  std::vector<Eigen::VectorXd> z_diff;
+  /// After a converged step to z_new: z_diff becomes the differences of z_new.
+  void push_difference(const Eigen::VectorXd& z_new);
   int history_steps = 0;    // converged steps behind z (for the extrapolated start)
   int predictor_order = 0;  // the order of predict() that would have started the last step best
   /// Start of the next step: the polynomial of degree p through z and z_past[0 .. p-1]
@@ -207,6 +239,7 @@ struct RodDynamics::Impl {
   // Residual-only path: scratch states (D each) and each actuator's routing r, r' at every
   // stage slot ([slot * n_act + i]).
   Eigen::VectorXd ws_y_, ws_dy_, ws_stage_, ws_k_, ws_acc_, ws_node_, ws_next_;
+  dynamics::StageJacobian ws_jacobian_;  // integrate_interval()'s stage Jacobian
   std::vector<internal::Vec3> slot_r_, slot_dr_;
   /// Actuator a's routing r, r' as rhs() reads it at stage slot `slot` (routing_s, routing_side
   /// at the slot's arc length; evaluated once in the constructor).
@@ -225,7 +258,7 @@ struct RodDynamics::Impl {
   /// Dense Newton system: x = J^-1 b by the factors (x and b distinct, of unknowns()).
   void dense_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   // solve()'s and step()'s workspace (kept between steps: no allocations per step).
-  Eigen::VectorXd r_, z_old_, dz_, u_, z_start_, ws_predict_;
+  Eigen::VectorXd r_, z_old_, dz_, u_, z_start_, ws_predict_, ws_carry_, ws_next_diff_;
   std::vector<std::vector<double>> T_old_;
   double lu_c0 = -1.0;
   std::vector<Eigen::Triplet<double>> triplets_;

@@ -68,13 +68,19 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
       return sum;
     }
     // A stale factorization gets kStaleIterations chord iterations, each of which must halve
-    // the residual; then a fresh Jacobian at the last accepted point.
+    // the residual (or nearly converge, below); then a fresh Jacobian at the last accepted
+    // point.
     if (step_taken && !step_from_fresh && stale_iterations >= kStaleIterations) {
       need_fresh = true;
       stale_iterations = 0;
       continue;  // re-evaluates at zz with a fresh Jacobian
     }
-    if (step_taken && !(rn < (step_from_fresh ? 1.0 : 0.5) * rn_old)) {
+    // A stale chord step that contracts, but by less than half, is kept when two more at its
+    // rate reach the tolerance: near the solution a fresh Jacobian costs more than they do.
+    const double rate = rn / rn_old;
+    const bool nearly_converged =
+        step_taken && !step_from_fresh && rate < 1.0 && rn * rate * rate <= opt.tolerance;
+    if (step_taken && !(rn < (step_from_fresh ? 1.0 : 0.5) * rn_old) && !nearly_converged) {
       if (!step_from_fresh) {
         // The old factorization contracts too slowly here: a fresh Jacobian at z_old.
         zz = z_old;

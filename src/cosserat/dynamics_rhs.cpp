@@ -10,7 +10,7 @@ using namespace dynamics_names;
 
 bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
                             const Eigen::VectorXd& y, int slot, Eigen::VectorXd& dy,
-                            Eigen::MatrixXd* A) {
+                            dynamics::StageJacobian* A) {
   const Eigen::Map<const Mat3> R(y.data() + kR);
   const Vec3 Nb = y.segment<3>(kN), Mb = y.segment<3>(kM);
   const Vec3 q = y.segment<3>(kQ), w = y.segment<3>(kW);
@@ -121,31 +121,22 @@ bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
   }
   if (n_tca > 0) dy.segment(kT, n_tca).setZero();  // T_j' = 0: one tension along the string
   if (!A) return true;
-  // Jacobian: direct part (xi fixed) plus df/dxi Z on the (N, M) columns.
-  Eigen::MatrixXd& Aj = *A;
-  Aj.setZero(D, D);
+  // Jacobian: direct part (xi fixed) plus df/dxi Z on the (N, M) rows of the state and on
+  // the TCA tensions (StageJacobian).
+  StageJacobian& Aj = *A;
   const Mat3 I = Mat3::Identity();
-  const Mat3 Om = hat(om);
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < 3; ++i) {
-      Aj(kP + i, kR + 3 * j + i) = nu[j];                                         // d(R nu)/dR_ij
-      for (int k = 0; k < 3; ++k) Aj(kR + 3 * k + i, kR + 3 * j + i) = Om(j, k);  // R hat(om)
-      Aj(kN + j, kR + 3 * j + i) = -f_W[i];                                       // -R^T f
-    }
-  }
-  Aj.block<3, 3>(kN, kN) = -Om;
-  Aj.block<3, 3>(kN, kQ) = sp.rho_A * (hat(w) + c * I);
-  Aj.block<3, 3>(kN, kW) = -sp.rho_A * hat(q);
-  Aj.block<3, 3>(kM, kM) = -Om;
-  Aj.block<3, 3>(kM, kN) = -hat(nu);
-  Aj.block<3, 3>(kM, kW) =
-      hat(w) * sp.rho_J.asDiagonal() - hat(Jw) + c * Mat3(sp.rho_J.asDiagonal());
-  Aj.block<3, 3>(kQ, kQ) = -Om;
-  Aj.block<3, 3>(kQ, kW) = -hat(nu);
-  Aj.block<3, 3>(kW, kW) = -Om;
+  Aj.kT = kT;
+  Aj.nu = nu;
+  Aj.f_W = f_W;
+  Aj.Om = hat(om);
+  Aj.hat_nu = hat(nu);
+  Aj.B_NQ = sp.rho_A * (hat(w) + c * I);
+  Aj.B_NW = -sp.rho_A * hat(q);
+  Aj.B_MW = hat(w) * sp.rho_J.asDiagonal() - hat(Jw) + c * Mat3(sp.rho_J.asDiagonal());
+  Aj.Z = Z;
   // df/dxi (D x 6).
-  Eigen::Matrix<double, Eigen::Dynamic, 6> Fx =
-      Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(D, 6);
+  Eigen::Matrix<double, Eigen::Dynamic, 6>& Fx = Aj.Fx;
+  Fx.setZero(D, 6);
   Fx.block<3, 3>(kP, 0) = R;
   for (int j = 0; j < 3; ++j) Fx.block<3, 3>(kR + 3 * j, 3) = -R * hat(Vec3::Unit(j));
   Fx.block<3, 3>(kN, 3) = hat(Nb);
@@ -162,19 +153,44 @@ bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
     Fx.block<1, 3>(kDelta + i, 0) = qh.transpose();
     Fx.block<1, 3>(kDelta + i, 3) = r.cross(qh).transpose();
   }
-  // TCA tensions: f depends on T_j only through the strains, d xi / d T_j = -Z c_i (qh_i,
-  // r_i x qh_i) from the constitutive law.
+  // TCA tensions: f depends on T_j only through the strains, d xi / d T_j = Z v_j with
+  // v_j = -c_i (qh_i, r_i x qh_i) from the constitutive law.
+  Aj.v.resize(n_tca);
   for (int j = 0; j < n_tca; ++j) {
     const int i = tca_actuator[j];
+    Aj.v[j].setZero();
     if (!runs(slot, i)) continue;
     const Vec3& r = slot_r(slot, i);
     const Vec3 qh = (nu + om.cross(r) + slot_dr(slot, i)).normalized();
     Vec6 g;
     g << qh, r.cross(qh);
-    Aj.col(kT + j) += Fx * (Z * (-count[i] * g));
+    Aj.v[j] = -count[i] * g;
   }
-  Aj.middleCols<6>(kN) += Fx * Z;
   return true;
+}
+
+void StageJacobian::apply(const Eigen::MatrixXd& dY, Eigen::MatrixXd& dK) const {
+  // Column by column, in fixed-size blocks (the layout of dynamics.hpp; R's column j at kR + 3 j).
+  const int D = static_cast<int>(dY.rows());
+  dK.resize(D, dY.cols());
+  for (Eigen::Index col = 0; col < dY.cols(); ++col) {
+    const double* y = dY.col(col).data();
+    double* k = dK.col(col).data();
+    // The strains' part: Fx Z (dY_NM + sum_j v_j dY_Tj).
+    Vec6 x = Eigen::Map<const Vec6>(y + kN);
+    for (std::size_t j = 0; j < v.size(); ++j) x += v[j] * y[kT + static_cast<int>(j)];
+    const Vec6 zx = Z * x;
+    Eigen::Map<Eigen::VectorXd>(k, D).noalias() = Fx * zx;
+    // The direct part (xi fixed).
+    const Eigen::Map<const Mat3> dR(y + kR);
+    const Eigen::Map<const Vec3> dN(y + kN), dM(y + kM), dQ(y + kQ), dW(y + kW);
+    Eigen::Map<Vec3>(k + kP) += dR * nu;                        // d(R nu)
+    Eigen::Map<Mat3>(k + kR) += dR * Om;                        // d(R hat(omega))
+    Eigen::Map<Vec3>(k + kN) += B_NQ * dQ + B_NW * dW - Om * dN - dR.transpose() * f_W;
+    Eigen::Map<Vec3>(k + kM) += B_MW * dW - Om * dM - hat_nu * dN;
+    Eigen::Map<Vec3>(k + kQ) -= Om * dQ + hat_nu * dW;
+    Eigen::Map<Vec3>(k + kW) -= Om * dW;
+  }
 }
 
 bool RodDynamics::Impl::rhs_residual(double s, const double* y, int slot, double* dy) {

@@ -12,12 +12,18 @@ using namespace dynamics_names;
 
 bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::MatrixXd* Phi) {
   Eigen::VectorXd Y(D), kj(D), acc(D);
-  Eigen::MatrixXd A, dY, dK, dacc;
+  Eigen::MatrixXd dY, dK, dacc;
+  StageJacobian& A = ws_jacobian_;
   if (Phi) {
-    Phi->setIdentity(D, D);
-    dY.resize(D, D);
-    dK.resize(D, D);
-    dacc.resize(D, D);
+    // The derivatives by the node's unknowns only: at the base (k = 0) the n0() columns of
+    // (N, M) and the TCA tensions (column c is state component unknown_state(0, c)), a
+    // quarter of the state's; elsewhere the whole state.
+    const int m = k == 0 ? n0() : D;
+    Phi->setZero(D, m);
+    for (int c = 0; c < m; ++c) (*Phi)(unknown_state(k, c), c) = 1.0;
+    dY.resize(D, m);
+    dK.resize(D, m);
+    dacc.resize(D, m);
   }
   for (int i = k * S; i < (k + 1) * S; ++i) {
     grid[i] = y;
@@ -27,7 +33,6 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
     for (int j = 0; j < stages; ++j) {
       if (j == 0) {
         Y = y;
-        if (Phi) dY = *Phi;
       } else {
         Y = y + (kStageA[j] * hs) * kj;
         if (Phi) dY = *Phi + (kStageA[j] * hs) * dK;
@@ -36,7 +41,7 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
       if (!std::isfinite(kj.sum())) return false;
       acc += stage_b[j] * kj;
       if (Phi) {
-        dK.noalias() = A * dY;
+        A.apply(j == 0 ? *Phi : dY, dK);  // dK = (df/dy) dY
         dacc += stage_b[j] * dK;
       }
     }
@@ -49,7 +54,9 @@ bool RodDynamics::Impl::integrate_interval(int k, Eigen::VectorXd& y, Eigen::Mat
 
 bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
   // integrate_interval()'s RK4 with its numbers (the same operations on each component), on
-  // the scratch states; one pass per stage accumulates the step and forms the next stage state.
+  // the scratch states; one pass per stage accumulates the step and forms the next stage
+  // state (the last one also the step's end). A non-finite stage derivative makes the step's
+  // end non-finite (the operations keep NaN and infinity), so each step's end is checked.
   double* __restrict Y = ws_stage_.data();
   double* __restrict kj = ws_k_.data();
   double* __restrict acc = ws_acc_.data();
@@ -60,25 +67,36 @@ bool RodDynamics::Impl::integrate_interval_residual(int k, double* y) {
       // (the first stage at y itself)
       if (!rhs_residual(s + kStageC[j] * hs, j == 0 ? y : Y, 4 * i + j, kj)) return false;
       const double b = stage_b[j];
-      double sum = 0.0;
-      if (j == 0) {
-        for (int c = 0; c < D; ++c) acc[c] = b * kj[c];
-      } else {
-        for (int c = 0; c < D; ++c) acc[c] += b * kj[c];
-      }
-      for (int c = 0; c < D; ++c) sum += kj[c];
-      if (!std::isfinite(sum)) return false;
       if (j + 1 < stages) {
         const double a = kStageA[j + 1] * hs;
-        for (int c = 0; c < D; ++c) Y[c] = y[c] + a * kj[c];
+        if (j == 0) {
+          for (int c = 0; c < D; ++c) {
+            acc[c] = b * kj[c];
+            Y[c] = y[c] + a * kj[c];
+          }
+        } else {
+          for (int c = 0; c < D; ++c) {
+            acc[c] += b * kj[c];
+            Y[c] = y[c] + a * kj[c];
+          }
+        }
+      } else if (j == 0) {  // one stage (forward Euler)
+        for (int c = 0; c < D; ++c) {
+          acc[c] = b * kj[c];
+          y[c] += hs * acc[c];
+        }
+      } else {
+        for (int c = 0; c < D; ++c) {
+          acc[c] += b * kj[c];
+          y[c] += hs * acc[c];
+        }
       }
     }
-    for (int c = 0; c < D; ++c) y[c] += hs * acc[c];
+    bool finite = true;
+    for (int c = 0; c < D; ++c) finite = finite && std::isfinite(y[c]);
+    if (!finite) return false;
   }
   if (k == M - 1) std::copy(y, y + D, grid[N].data());
-  for (int c = 0; c < D; ++c) {
-    if (!std::isfinite(y[c])) return false;
-  }
   return true;
 }
 
@@ -155,18 +173,17 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
     const int row = k * D;  // continuity rows of node k + 1; the tip rows after the last
     const int col0 = k == 0 ? 0 : n0() + (k - 1) * D;
     // Columns of node k's unknowns: (N, M) and the TCA tensions at the base, the whole state
-    // elsewhere; column c is state component state_col(c).
-    const int first = k == 0 ? kN : 0, ncols = k == 0 ? n0() : D;
-    const auto state_col = [&](int c) { return k == 0 && c >= 6 ? kT + c - 6 : first + c; };
+    // elsewhere; column c of Phi is the derivative by state component unknown_state(k, c).
+    const int ncols = k == 0 ? n0() : D;
     if (k < M - 1) {
       node_state(zz, k + 1, y_next);
       r.segment(row, D) = ((y - y_next).array() * inv_scale).matrix();
       if (jacobian) {
         const int col1 = n0() + k * D;
         for (int c = 0; c < ncols; ++c) {
-          const int sc = state_col(c);
+          const int sc = unknown_state(k, c);
           for (int rr = 0; rr < D; ++rr) {
-            triplets_.emplace_back(row + rr, col0 + c, Phi(rr, sc) * scale[sc] * inv_scale[rr]);
+            triplets_.emplace_back(row + rr, col0 + c, Phi(rr, c) * scale[sc] * inv_scale[rr]);
           }
         }
         for (int rr = 0; rr < D; ++rr) triplets_.emplace_back(row + rr, col1 + rr, -1.0);
@@ -179,9 +196,9 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
       if (jacobian) {
         const Eigen::MatrixXd GP = G * Phi;
         for (int c = 0; c < ncols; ++c) {
-          const int sc = state_col(c);
+          const int sc = unknown_state(k, c);
           for (int rr = 0; rr < n0(); ++rr) {
-            triplets_.emplace_back(row + rr, col0 + c, GP(rr, sc) * scale[sc]);
+            triplets_.emplace_back(row + rr, col0 + c, GP(rr, c) * scale[sc]);
           }
         }
       }

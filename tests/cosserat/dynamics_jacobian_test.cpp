@@ -23,7 +23,7 @@ namespace {
 
 /// Central differences on the scaled unknowns (O(1)) at the default step: truncation and
 /// round-off both ~eps^(2/3) ~ 4e-11 relative, amplified by the shooting intervals' growth
-/// (at most e^2 each, DynamicsOptions::max_interval_growth) and the residual's scale mix.
+/// (four intervals here, o.intervals below) and the residual's scale mix.
 constexpr double kJacobianTolerance = 1e-6;
 /// A perturbation of the converged unknowns (scaled, so about 1e-3 of each component's scale):
 /// the Jacobian is checked away from the solution, where every term of the residual counts.
