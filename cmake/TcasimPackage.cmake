@@ -65,15 +65,3 @@ set_target_properties(tcasim PROPERTIES INSTALL_RPATH "$ORIGIN/${_tcasim_bin_to_
 install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 unset(_tcasim_targets)
 unset(_tcasim_bin_to_lib)
-
-# The install as a consumer sees it (label `package`: in the default test run, not in the
-# sanitizer run, whose instrumented libraries a plain consumer cannot link).
-if(TCASIM_BUILD_TESTS)
-  add_test(NAME package_install_and_consume
-           COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-                   -DWORK_DIR=${PROJECT_BINARY_DIR}/package-test "-DGENERATOR=${CMAKE_GENERATOR}"
-                   -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DBUILD_TYPE=$<CONFIG>
-                   -DPLUGIN=${TCASIM_INSTALL_PLUGINDIR}/$<TARGET_FILE_NAME:tcasim_umfpack>
-                   -P ${PROJECT_SOURCE_DIR}/cmake/TcasimPackageTest.cmake)
-  set_tests_properties(package_install_and_consume PROPERTIES LABELS package TIMEOUT 300)
-endif()

@@ -3,7 +3,8 @@
 # the example into the same prefix and runs it there: it must solve the shipped scenario
 # and find the shipped materials in the installed data folder, not in the source tree.
 # The installed tcasim loads the installed UMFPACK plugin (PLUGIN: its path under the prefix).
-# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE, PLUGIN.
+# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE, PLUGIN; PYTHON and
+# PYTHON_SITE (the interpreter and the package folder under the prefix; empty: no module built).
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER BUILD_TYPE PLUGIN)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "TcasimPackageTest.cmake: -D${var}=... is required")
@@ -72,4 +73,47 @@ endif()
 string(FIND "${loader_log}" "file=${installed_plugin} " at)
 if(at LESS 0)
   message(FATAL_ERROR "the installed tcasim did not load the installed plugin ${installed_plugin}")
+endif()
+
+# The installed Python package (when built: PYTHON and PYTHON_SITE given), imported from a
+# folder outside the build tree with only the install on its path: it must be the installed
+# module, use the installed data and load the installed UMFPACK plugin.
+if(DEFINED PYTHON AND NOT PYTHON STREQUAL "")
+  set(site "${prefix}/${PYTHON_SITE}")
+  if(NOT EXISTS "${site}/tcasim/__init__.py")
+    message(FATAL_ERROR "the install lacks the Python package ${site}/tcasim")
+  endif()
+  set(script [=[
+import os, sys
+import tcasim
+print("module:", os.path.realpath(tcasim.__file__))
+print("data:", os.path.realpath(tcasim.data_directory()))
+sc = tcasim.load_scenario(sys.argv[1])
+r = tcasim.solve(sc)
+print("cosserat converged:", r.converged, "tip_m:", *r.tip_position_m)
+fe = tcasim.solve(sc, method="fe", linear_solver="umfpack")
+print("fe umfpack converged:", fe.converged)
+]=])
+  file(WRITE "${WORK_DIR}/import_installed.py" "${script}")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E chdir "${WORK_DIR}"
+                          ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_DIR --unset=TCASIM_PLUGIN_DIR
+                          "PYTHONPATH=${site}" LD_DEBUG=files ${PYTHON} "${WORK_DIR}/import_installed.py"
+                          "${prefix}/share/tcasim/scenarios/circular-manipulator.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE py_output ERROR_VARIABLE py_loader_log)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the installed Python package failed (${rc}):\n${py_output}\n${py_loader_log}")
+  endif()
+  message("${py_output}")
+  string(FIND "${py_loader_log}" "file=${installed_plugin} " at)
+  if(at LESS 0)
+    message(FATAL_ERROR "the installed Python package did not load the installed plugin ${installed_plugin}")
+  endif()
+  file(REAL_PATH "${site}/tcasim/__init__.py" installed_init)
+  foreach(expected "module: ${installed_init}\n" "data: ${installed_data}\n"
+                   "cosserat converged: True" "fe umfpack converged: True")
+    string(FIND "${py_output}" "${expected}" at)
+    if(at LESS 0)
+      message(FATAL_ERROR "the installed Python package printed no '${expected}':\n${py_output}")
+    endif()
+  endforeach()
 endif()
