@@ -325,7 +325,8 @@ void add_sweep_command(CLI::App& app) {
     // sleep on a lock can take milliseconds to run again, which cost the two-thread sweep
     // about a tenth of its speed-up. The progress line is printed by whichever thread gets
     // `progress_mutex` without waiting (the last point's thread waits, so the final line is
-    // never skipped); whole chunks are written in order under `write_mutex`, once per chunk.
+    // printed once and last); whole chunks are written in order under `write_mutex`, once per
+    // chunk.
     std::vector<std::string> rows(points);  // point k is rows[k - first]
     std::atomic<std::size_t> done{0};
     std::atomic<int> failures{0};
@@ -336,12 +337,16 @@ void add_sweep_command(CLI::App& app) {
       const std::size_t now_done = done.fetch_add(1) + 1;
       if (!progress) return;
       std::unique_lock<std::mutex> lock(progress_mutex, std::defer_lock);
-      if (now_done == points) {
+      if (now_done == points) {  // the last point: its thread prints the final line
         lock.lock();
-      } else if (!lock.try_lock()) {
+        progress->update(points);
         return;
       }
-      progress->update(done.load());  // read under the lock: the reports never go back
+      if (!lock.try_lock()) return;
+      // Read under the lock, so the reports never go back; the final line is left to the last
+      // point's thread (once: a count already at the total is not reported here).
+      const std::size_t now = done.load();
+      if (now < points) progress->update(now);
     };
     std::mutex write_mutex;
     std::vector<char> chunk_done(mine.size(), 0);
