@@ -320,31 +320,14 @@ void RodDynamics::Impl::set_section_constants() {
   for (std::size_t i = 0; i < slot_sec.size(); ++i) slot_sec_c[i] = constants(slot_sec[i]);
 }
 
-namespace {
-
-/// The signed weights w_j = (-1)^j C(p+1, j+1), j = 0 .. p, of predict(p) (in its order of
-/// operations: C(p+1, j+1) = C(p+1, j) (p + 1 - j) / (j + 1)).
-void predictor_weights(int p, double* w) {
-  double c = 1.0;
-  for (int j = 0; j <= p; ++j) {
-    c = c * (p + 1 - j) / (j + 1);
-    w[j] = j % 2 ? -c : c;
-  }
-}
-
-}  // namespace
-
 void RodDynamics::Impl::predict(int p, Eigen::VectorXd& out) const {
-  // Newton's backward-difference extrapolation: z(n+1) ~ sum_{j=0..p} (-1)^j C(p+1, j+1) z(n-j).
-  double w[kMaxPredictorOrder + 1];
-  predictor_weights(p, w);
-  out = w[0] * z;
-  for (int j = 1; j <= p; ++j) out += w[j] * z_past[j - 1];
+  // Newton's backward-difference extrapolation one step ahead: z(n+1) ~ sum_{j=0..p} nabla^j z.
+  out = z_diff[0];
+  for (int j = 1; j <= p; ++j) out += z_diff[j];
 }
 
 int RodDynamics::Impl::best_predictor_order(const Eigen::VectorXd& z_new) {
-  // predict(p) order by order as the partial sums of the backward differences (the same
-  // polynomials as predict()'s weights; only the order chosen is taken from here).
+  // predict(p) order by order: its partial sums.
   Eigen::VectorXd& e = ws_predict_;
   int best = 0;
   double best_error = HUGE_VAL;
@@ -440,7 +423,6 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) return sum;
   d.z = zz;
-  d.z_past.clear();
   d.z_diff.assign(1, zz);
   d.predictor_order = 0;
   d.cur = d.trial;
@@ -534,9 +516,6 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   }
   d.predictor_order = d.best_predictor_order(zz);
   d.push_difference(zz);
-  if (static_cast<int>(d.z_past.size()) < kMaxPredictorOrder) d.z_past.emplace_back();
-  for (std::size_t j = d.z_past.size() - 1; j > 0; --j) d.z_past[j].swap(d.z_past[j - 1]);
-  d.z_past[0].swap(d.z);
   d.z.swap(zz);
   ++d.history_steps;
   d.grid_converged = d.grid;

@@ -213,19 +213,15 @@ struct RodDynamics::Impl {
   std::vector<Eigen::VectorXd> grid;  // N + 1 states of the last evaluation
   std::vector<Eigen::VectorXd> grid_converged;
   Eigen::VectorXd z;
-  /// Earlier solutions, newest first (z_past[0] = z of the step before; at most
-  /// kMaxPredictorOrder of them).
-  std::vector<Eigen::VectorXd> z_past;
-  /// Backward differences of z (z_diff[j] = nabla^j z, j = 0 .. min(history_steps,
-  /// kMaxPredictorOrder)): predict(p) = sum_{j <= p} z_diff[j] (Newton's backward formula one
-  /// step ahead), which best_predictor_order() sums up order by order.
+  /// Backward differences of the solutions (z_diff[j] = nabla^j z, j = 0 .. min(history_steps,
+  /// kMaxPredictorOrder); z_diff[0] = z): the history of the extrapolated start.
   std::vector<Eigen::VectorXd> z_diff;
   /// After a converged step to z_new: z_diff becomes the differences of z_new.
   void push_difference(const Eigen::VectorXd& z_new);
   int history_steps = 0;    // converged steps behind z (for the extrapolated start)
   int predictor_order = 0;  // the order of predict() that would have started the last step best
-  /// Start of the next step: the polynomial of degree p through z and z_past[0 .. p-1]
-  /// evaluated one step ahead (p <= history_steps), into out.
+  /// Start of the next step: the polynomial of degree p through z and the p solutions before it
+  /// evaluated one step ahead, sum_{j <= p} z_diff[j] (p <= history_steps), into out.
   void predict(int p, Eigen::VectorXd& out) const;
   /// After a converged step to `z_new`: the predictor order that would have come closest to it
   /// (scaled max norm, orders 0 .. min(kMaxPredictorOrder, history_steps)).

@@ -90,13 +90,13 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
 void RodProblem::set_omega_star_fraction(double mu) {
   omega_star_fraction = mu;
   omega_star_tip = omega_star_tip_model;
-  if (mu != 1.0) omega_star_tip = omega_star + mu * (omega_star_tip_model - omega_star);
+  if (mu != 1.0) omega_star_tip = homotopy_omega_star(omega_star_tip_model);
 }
 
 void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
                             double& wf) const {
   model_properties(s, side, Kn, Kw, ws, wf);
-  if (omega_star_fraction != 1.0) ws = omega_star + omega_star_fraction * (ws - omega_star);
+  if (omega_star_fraction != 1.0) ws = homotopy_omega_star(ws);
 }
 
 void RodProblem::model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,

@@ -80,6 +80,10 @@ struct RodProblem {
   /// properties() of the model itself: omega* without the homotopy below (mu = 1).
   void model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
                         double& wf) const;
+  /// The homotopy's omega* for the model's omega*(s) = ws: omega*(0) + mu (ws - omega*(0)).
+  Vec3 homotopy_omega_star(const Vec3& ws) const {
+    return omega_star + omega_star_fraction * (ws - omega_star);
+  }
 
   /// Homotopy in the variation of omega* along s (the shooting solver's cold start of a body
   /// whose reference curvature varies): with fraction mu, the IVP and the tip conditions see

@@ -55,10 +55,10 @@ struct RodRhs : RodProblem {
     const Local* k = memo.find(s, side);
     if (k == nullptr) k = &memo.insert(s, side, model_local(s, side));
     if (omega_star_fraction == 1.0) return *k;
-    // The homotopy in omega*'s variation (RodProblem::set_omega_star_fraction), applied as
-    // RodProblem::properties does: omega*_mu = omega*(0) + mu (omega*(s) - omega*(0)).
+    // The homotopy in omega*'s variation (RodProblem::set_omega_star_fraction), as
+    // RodProblem::properties applies it.
     homotopy_local = *k;
-    homotopy_local.ws = omega_star + omega_star_fraction * (k->ws - omega_star);
+    homotopy_local.ws = homotopy_omega_star(k->ws);
     homotopy_local.dws *= omega_star_fraction;
     return homotopy_local;
   }
