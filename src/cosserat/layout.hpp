@@ -65,8 +65,9 @@ class Layout {
   virtual void reduce_unknowns(Eigen::VectorXd& x) const = 0;
   /// This layout's unknowns to the 3-D ones, in place.
   virtual void embed_unknowns(Eigen::VectorXd& x) const = 0;
-  /// This layout's IVP state to the 3-D one (cosserat/shooting.hpp), in place.
-  virtual void embed_state(Eigen::VectorXd& y) const = 0;
+  /// This layout's IVP state y as the 3-D one y3 (cosserat/shooting.hpp); y3 is resized only
+  /// when its size differs (sampling reuses it), and must not be y.
+  virtual void embed_state(const Eigen::VectorXd& y, Eigen::VectorXd& y3) const = 0;
 };
 
 /// The 3-D layout of cosserat/shooting.hpp (layout_3d.cpp).

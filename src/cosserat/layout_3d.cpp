@@ -111,7 +111,7 @@ class Layout3d final : public Layout {
 
   void reduce_unknowns(Eigen::VectorXd&) const override {}
   void embed_unknowns(Eigen::VectorXd&) const override {}
-  void embed_state(Eigen::VectorXd&) const override {}
+  void embed_state(const Eigen::VectorXd& y, Eigen::VectorXd& y3) const override { y3 = y; }
 };
 
 }  // namespace

@@ -111,11 +111,11 @@ class PlanarLayout final : public Layout {
     x = std::move(x3);
   }
 
-  void embed_state(Eigen::VectorXd& yp) const override {
+  void embed_state(const Eigen::VectorXd& yp, Eigen::VectorXd& y3) const override {
     const Mat3& R0 = model_.R_WB0;
     const Vec3 p0 = model_.base_position_W_m;
     const double L = model_.length_m;
-    Eigen::VectorXd y3 = Eigen::VectorXd::Zero(state_layout::kDelta + n_act_);
+    y3.resize(state_layout::kDelta + n_act_);  // every entry is set below
     y3.segment<3>(state_layout::kP) = p0 + R0 * Vec3(yp[planar::kQ], 0.0, yp[planar::kQ + 1]);
     const double c = yp[planar::kCS], s = yp[planar::kCS + 1];
     Mat3 rot;
@@ -125,7 +125,6 @@ class PlanarLayout final : public Layout {
     y3.segment<3>(state_layout::kOmega) = Vec3(0.0, yp[planar::kKappa], 0.0);
     y3.segment<3>(state_layout::kC) = L * p0 + R0 * Vec3(yp[planar::kC], 0.0, yp[planar::kC + 1]);
     y3.tail(n_act_) = yp.tail(n_act_);
-    yp = std::move(y3);
   }
 
  private:

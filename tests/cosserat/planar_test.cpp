@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -257,6 +258,71 @@ TEST(PlanarReduction, SeveralStringsRotatedBaseAndTipLoadsMatchThe3dSolve) {
     expect_same_solution(solve_with(m, scheme_options(method, steps, coarse, true), act),
                          solve_with(m, scheme_options(method, steps, coarse, false), act), m,
                          ode::to_string(method));
+  }
+}
+
+/// Largest entry-wise difference of two sequences of vectors or matrices of equal length.
+template <class V>
+double largest_difference(const std::vector<V>& a, const std::vector<V>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double d = 0.0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k)
+    d = std::max(d, (a[k] - b[k]).template lpNorm<Eigen::Infinity>());
+  return d;
+}
+
+// make_result samples a solution in the plane by the planar IVP. From the same unknowns the
+// 3-D IVP (a solver without the reduction) must give the same result to round-off: the
+// centerline, the tip, the probes (at a sample and between samples, off the axis), the
+// elongations and the bending radius; and a load scale other than 1 takes the same path.
+TEST(PlanarReduction, ResultsAreSampledInThePlaneAsThe3dIvpSamplesThem) {
+  rod::RodModel m = three_string_rod();
+  m.probes = {{"mid", 0.5 * m.length_m, {0.001, 0.002, 0.0}},
+              {"between", 0.37 * m.length_m, {-0.002, 0.0, 0.001}}};
+  Actuation act = Actuation::from_model(m);
+  act.tip_force_W_N = {0.0, 1e-3, -2e-3};
+  ShootingSolver planar_solver(m, scheme_options(ode::Method::kRk4, 32, 4, true));
+  ShootingSolver full_solver(m, scheme_options(ode::Method::kRk4, 32, 4, false));
+  for (const double scale : {1.0, 0.5}) {
+    SCOPED_TRACE("load scale " + std::to_string(scale));
+    act.load_scale = scale;
+    Solution sol;
+    const Summary summary = planar_solver.solve(act, sol);
+    ASSERT_TRUE(summary.converged()) << summary.message;
+    ASSERT_TRUE(summary.planar);
+    const rod::Result rp = planar_solver.make_result(act, sol, summary);
+    const rod::Result r3 = full_solver.make_result(act, sol, summary);
+    ASSERT_TRUE(rp.converged) << rp.message;
+    ASSERT_TRUE(r3.converged) << r3.message;
+    const double size_m = m.length_m;
+    EXPECT_EQ(rp.centerline_s_m, r3.centerline_s_m);
+    EXPECT_LE(largest_difference(rp.centerline_p_W_m, r3.centerline_p_W_m),
+              kRoundOffRelative * size_m);
+    EXPECT_LE(largest_difference(rp.centerline_R_WB, r3.centerline_R_WB), kRoundOffRelative);
+    EXPECT_LE((rp.tip_position_W_m - r3.tip_position_W_m).lpNorm<Eigen::Infinity>(),
+              kRoundOffRelative * size_m);
+    // The reported tip is the last sample and lies in the plane of the base's x-z axes.
+    EXPECT_EQ(rp.tip_position_W_m, rp.centerline_p_W_m.back());
+    EXPECT_NEAR(m.R_WB0.col(1).dot(rp.tip_position_W_m - m.base_position_W_m), 0.0,
+                kRoundOffRelative * size_m);
+    ASSERT_EQ(rp.probes.size(), 2u);
+    ASSERT_EQ(r3.probes.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_LE((rp.probes[k].position_W_m - r3.probes[k].position_W_m).lpNorm<Eigen::Infinity>(),
+                kRoundOffRelative * size_m)
+          << rp.probes[k].name;
+    }
+    ASSERT_EQ(rp.actuators.size(), r3.actuators.size());
+    for (std::size_t i = 0; i < rp.actuators.size(); ++i) {
+      EXPECT_EQ(rp.actuators[i].tension_N, r3.actuators[i].tension_N);
+      EXPECT_NEAR(rp.actuators[i].elongation_m, r3.actuators[i].elongation_m,
+                  kRoundOffRelative * size_m);
+    }
+    ASSERT_EQ(rp.bending_radius_m.has_value(), r3.bending_radius_m.has_value());
+    if (rp.bending_radius_m) {
+      EXPECT_NEAR(*rp.bending_radius_m, *r3.bending_radius_m,
+                  kRoundOffRelative * *r3.bending_radius_m);
+    }
   }
 }
 
