@@ -400,7 +400,7 @@ rod::Result ShootingSolver::make_result(const Actuation& actuation, const Soluti
   }
   // A solution in the plane is sampled by the planar IVP: the same discretization (the
   // samples agree with the 3-D IVP's to round-off, docs/conventions.md "Planar reduction")
-  // at about a quarter of the cost, which was more than half of a warm sweep step.
+  // at about a third of the cost (the 3-D sampling was more than half of a warm sweep step).
   Impl& sampler =
       reduced_ && in_plane(*reduced_->layout, actuation, solution) ? *reduced_ : *impl_;
   rod::Result res = sampler.make_result(actuation, solution, summary);
