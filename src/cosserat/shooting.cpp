@@ -60,6 +60,14 @@ ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o,
   y.resize(dim);
   if (sensitivities) Y.resize(dim * (1 + nx));
   level = &fine_level;
+  // make_result samples at every step node of the fine level's grid (output_level): the
+  // fine IVPs can record those samples for it (see Samples).
+  record_samples = ode::is_fixed_step(options.integrator.method) &&
+                   options.kinematics == Kinematics::kFlat && options.centerline_intervals == 0;
+  sample_recorder = [this](double s, const Eigen::VectorXd& yy) {
+    samples.s.push_back(s);
+    samples.y.insert(samples.y.end(), yy.data(), yy.data() + yy.size());
+  };
 }
 
 Options ShootingSolver::Impl::validated(const rod::RodModel& m, Options o) {
@@ -305,7 +313,22 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     res.centerline_R_WB.push_back(Eigen::Map<const Mat3>(y3.data() + kR));
     if (!model.probes.empty()) sample_states.push_back(yy);
   };
-  const bool sampled = output_level->integrate(rhs, L, y, observer);
+  // The accepted point's samples when the memo holds this IVP (the one output_level would
+  // integrate: the same grid, right-hand side and parameters), else the IVP again.
+  const bool recorded = acc_samples.valid && memo_valid && acc_level == &fine_level &&
+                        x_acc == x && acc_cT == cT && acc_f_ext == f_ext_W &&
+                        acc_omega_star_fraction == omega_star_fraction;
+  bool sampled = true;
+  if (recorded) {
+    Eigen::VectorXd yy(dim);
+    for (std::size_t k = 0; k < acc_samples.s.size(); ++k) {
+      yy = Eigen::Map<const Eigen::VectorXd>(acc_samples.y.data() + k * dim, dim);
+      observer(acc_samples.s[k], yy);
+    }
+    y = y_acc;
+  } else {
+    sampled = output_level->integrate(rhs, L, y, observer);
+  }
   if (!sampled) {
     res.converged = false;
     res.message = "IVP failed while sampling the solution";

@@ -211,6 +211,24 @@ struct ShootingSolver::Impl : internal::TipConditions {
   Vec3 acc_f_ext = Vec3::Zero();
   const IntegrationLevel* acc_level = nullptr;
   double acc_omega_star_fraction = 1.0;
+  // Samples of the plain fine-level IVPs (s and the layout's state at every step node, the
+  // nodes make_result samples), when record_samples is set (fixed-step flat integration,
+  // Options::centerline_intervals = 0): those of the last such IVP, from samples_x with the
+  // parameters samples_cT, samples_f_ext and samples_omega_star_fraction, and, after
+  // remember(), those of the accepted point's IVP. make_result takes the accepted point's
+  // samples when the memo holds its solution instead of integrating it again: the same IVP
+  // with the same observer, so the same numbers.
+  struct Samples {
+    std::vector<double> s, y;  // y: dim values per node
+    bool valid = false;
+  };
+  bool record_samples = false;
+  ode::Observer sample_recorder;  // appends to `samples`
+  Samples samples, acc_samples;
+  Eigen::VectorXd samples_x;
+  std::vector<double> samples_cT;
+  Vec3 samples_f_ext = Vec3::Zero();
+  double samples_omega_star_fraction = 1.0;
   Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
   int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
   int ivp_count = 0;

@@ -10,13 +10,27 @@ bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const E
                                     Eigen::VectorXd& r) {
   if (!all_finite(x)) return false;
   set_parameters(act, lambda, x);
+  samples.valid = false;
   if (memo_answers(x)) {
     y = y_acc;  // same IVP as the last accepted one: no integration
     return tip_residual(act, lambda, x, y, r);
   }
   initial_state(x, y);
   ++ivp_count;
-  if (!level->integrate(rhs, L, y)) return false;
+  const bool record = record_samples && level == &fine_level;
+  if (record) {
+    samples.s.clear();
+    samples.y.clear();
+  }
+  static const ode::Observer kNoObserver;
+  if (!level->integrate(rhs, L, y, record ? sample_recorder : kNoObserver)) return false;
+  if (record) {
+    samples.valid = true;
+    samples_x = x;
+    samples_cT = cT;
+    samples_f_ext = f_ext_W;
+    samples_omega_star_fraction = omega_star_fraction;
+  }
   return tip_residual(act, lambda, x, y, r);
 }
 
@@ -25,6 +39,7 @@ bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double la
                                                  Eigen::MatrixXd& J) {
   if (!all_finite(x)) return false;
   set_parameters(act, lambda, x);
+  samples.valid = false;
   Y.setZero();
   initial_state(x, y);
   Y.head(dim) = y;
@@ -43,6 +58,16 @@ bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x) const {
 }
 
 void ShootingSolver::Impl::remember(double lambda, const Eigen::VectorXd& x) {
+  // The accepted point's samples: those of the last IVP if it was this one (a plain fine IVP
+  // from x with the parameters now set); kept if the memo already holds this IVP; else none.
+  const bool same_ivp = memo_answers(x);
+  if (samples.valid && level == &fine_level && samples_x == x && samples_cT == cT &&
+      samples_f_ext == f_ext_W && samples_omega_star_fraction == omega_star_fraction) {
+    std::swap(acc_samples, samples);
+    samples.valid = false;
+  } else if (!same_ivp) {
+    acc_samples.valid = false;
+  }
   acc_full_load = lambda == 1.0 && level == &fine_level && omega_star_fraction == 1.0;
   acc_omega_star_fraction = omega_star_fraction;
   memo_valid = y.allFinite();
