@@ -238,6 +238,7 @@ void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x
   if (acc_full_load && x_acc.size() == x.size() && x_acc == x) {
     set_parameters(act, 1.0, x);  // no IVP: y(L) of this point is known
     y = y_acc;
+    samples.valid = false;  // they belong to y (Samples)
     if (!tip_residual(act, 1.0, x, y, r)) r.resize(0);
   } else if (!residual(act, 1.0, x, r)) {
     // Only the last accepted point of a failed continuation can land here; keep finite zeros.
@@ -294,7 +295,6 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     output_level.emplace(dim, 0, io, options.kinematics, false, piece_hooks());
   }
   set_parameters(act, 1.0, x);
-  initial_state(x, y);
   // The samples' count without knots inside (a hint: the vectors grow if there are more).
   int intervals = options.centerline_intervals;
   if (intervals == 0) {
@@ -315,11 +315,8 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
   };
   // The accepted point's samples when the memo holds this IVP (the one output_level would
   // integrate: the same grid, right-hand side and parameters), else the IVP again.
-  const bool recorded = acc_samples.valid && memo_valid && acc_level == &fine_level &&
-                        x_acc == x && acc_cT == cT && acc_f_ext == f_ext_W &&
-                        acc_omega_star_fraction == omega_star_fraction;
   bool sampled = true;
-  if (recorded) {
+  if (acc_samples.valid && memo_answers(x, &fine_level)) {
     Eigen::VectorXd yy(dim);
     for (std::size_t k = 0; k < acc_samples.s.size(); ++k) {
       yy = Eigen::Map<const Eigen::VectorXd>(acc_samples.y.data() + k * dim, dim);
@@ -327,8 +324,10 @@ rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Soluti
     }
     y = y_acc;
   } else {
+    initial_state(x, y);
     sampled = output_level->integrate(rhs, L, y, observer);
   }
+  samples.valid = false;  // y is no longer the last recorded IVP's (Samples)
   if (!sampled) {
     res.converged = false;
     res.message = "IVP failed while sampling the solution";

@@ -71,8 +71,8 @@ struct ShootingSolver::Impl : internal::TipConditions {
   bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
                              Eigen::VectorXd& r, Eigen::MatrixXd& J);
   /// Whether the memo holds y(L) of the IVP from x with the parameters last set
-  /// (set_parameters) on the active level.
-  bool memo_answers(const Eigen::VectorXd& x) const;
+  /// (set_parameters) on level `on` (the active level unless given).
+  bool memo_answers(const Eigen::VectorXd& x, const IntegrationLevel* on = nullptr) const;
   /// Records x (at load fraction lambda, the active level) as the accepted point of the IVP
   /// memo: y(L), the IVP parameters and the contact derivatives there.
   void remember(double lambda, const Eigen::VectorXd& x);
@@ -213,11 +213,11 @@ struct ShootingSolver::Impl : internal::TipConditions {
   double acc_omega_star_fraction = 1.0;
   // Samples of the plain fine-level IVPs (s and the layout's state at every step node, the
   // nodes make_result samples), when record_samples is set (fixed-step flat integration,
-  // Options::centerline_intervals = 0): those of the last such IVP, from samples_x with the
-  // parameters samples_cT, samples_f_ext and samples_omega_star_fraction, and, after
-  // remember(), those of the accepted point's IVP. make_result takes the accepted point's
-  // samples when the memo holds its solution instead of integrating it again: the same IVP
-  // with the same observer, so the same numbers.
+  // Options::centerline_intervals = 0). `samples` are valid when the last IVP was such an
+  // IVP: they belong to y as remember() takes it (the last IVP, from the point it is given);
+  // remember() keeps them as the accepted point's, beside y_acc. make_result replays those
+  // when the memo holds its solution instead of integrating it again: the same IVP with the
+  // same observer, so the same numbers.
   struct Samples {
     std::vector<double> s, y;  // y: dim values per node
     bool valid = false;
@@ -225,10 +225,6 @@ struct ShootingSolver::Impl : internal::TipConditions {
   bool record_samples = false;
   ode::Observer sample_recorder;  // appends to `samples`
   Samples samples, acc_samples;
-  Eigen::VectorXd samples_x;
-  std::vector<double> samples_cT;
-  Vec3 samples_f_ext = Vec3::Zero();
-  double samples_omega_star_fraction = 1.0;
   Eigen::VectorXd coarse_jacobian_x;  // where the last coarse-level Newton Jacobian was taken
   int jacobian_updates = 0;  // Broyden updates of newton()'s Jacobian since it was computed
   int ivp_count = 0;

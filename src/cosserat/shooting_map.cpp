@@ -24,13 +24,7 @@ bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const E
   }
   static const ode::Observer kNoObserver;
   if (!level->integrate(rhs, L, y, record ? sample_recorder : kNoObserver)) return false;
-  if (record) {
-    samples.valid = true;
-    samples_x = x;
-    samples_cT = cT;
-    samples_f_ext = f_ext_W;
-    samples_omega_star_fraction = omega_star_fraction;
-  }
+  samples.valid = record;
   return tip_residual(act, lambda, x, y, r);
 }
 
@@ -52,20 +46,20 @@ bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double la
   return tip_jacobian(act, lambda, x, y, Y, J);
 }
 
-bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x) const {
-  return memo_valid && acc_level == level && x_acc.size() == x.size() && x_acc == x &&
-         acc_cT == cT && acc_f_ext == f_ext_W && acc_omega_star_fraction == omega_star_fraction;
+bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x,
+                                       const IntegrationLevel* on) const {
+  return memo_valid && acc_level == (on != nullptr ? on : level) && x_acc.size() == x.size() &&
+         x_acc == x && acc_cT == cT && acc_f_ext == f_ext_W &&
+         acc_omega_star_fraction == omega_star_fraction;
 }
 
 void ShootingSolver::Impl::remember(double lambda, const Eigen::VectorXd& x) {
-  // The accepted point's samples: those of the last IVP if it was this one (a plain fine IVP
-  // from x with the parameters now set); kept if the memo already holds this IVP; else none.
-  const bool same_ivp = memo_answers(x);
-  if (samples.valid && level == &fine_level && samples_x == x && samples_cT == cT &&
-      samples_f_ext == f_ext_W && samples_omega_star_fraction == omega_star_fraction) {
+  // The accepted point's samples: those of the last IVP (whose y(L) is y) if it recorded
+  // them; kept if the memo already holds this IVP (y came from it); else none.
+  if (samples.valid) {
     std::swap(acc_samples, samples);
     samples.valid = false;
-  } else if (!same_ivp) {
+  } else if (!memo_answers(x)) {
     acc_samples.valid = false;
   }
   acc_full_load = lambda == 1.0 && level == &fine_level && omega_star_fraction == 1.0;
