@@ -31,7 +31,10 @@ file(RELATIVE_PATH _tcasim_bin_to_lib "${CMAKE_INSTALL_FULL_BINDIR}" "${CMAKE_IN
 set(_tcasim_targets tcasim_tcasim)
 foreach(component IN LISTS TCASIM_COMPONENTS)
   set(target tcasim_${component})
-  set_target_properties(${target} PROPERTIES EXPORT_NAME ${component} INSTALL_RPATH "$ORIGIN")
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${component})
+  if(BUILD_SHARED_LIBS)
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN")
+  endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
   target_link_libraries(tcasim_tcasim INTERFACE tcasim::${component})
   list(APPEND _tcasim_targets ${target})
@@ -61,7 +64,12 @@ install(FILES ${PROJECT_BINARY_DIR}/tcasimConfig.cmake ${PROJECT_BINARY_DIR}/tca
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${TCASIM_INSTALL_DATADIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/validation/scenarios/ DESTINATION ${TCASIM_INSTALL_DATADIR}/scenarios
         COMPONENT runtime)
-set_target_properties(tcasim PROPERTIES INSTALL_RPATH "$ORIGIN/${_tcasim_bin_to_lib}")
+# Only shared libraries need a run path. Without one, CMake gives the build tree's programs a
+# run path of empty entries (room for the install one), and an empty entry means the current
+# directory: the program would load a library of that name from wherever it is started.
+if(BUILD_SHARED_LIBS)
+  set_target_properties(tcasim PROPERTIES INSTALL_RPATH "$ORIGIN/${_tcasim_bin_to_lib}")
+endif()
 install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 unset(_tcasim_targets)
 unset(_tcasim_bin_to_lib)

@@ -4,7 +4,8 @@
 # and find the shipped materials in the installed data folder, not in the source tree.
 # The installed tcasim loads the installed UMFPACK plugin (PLUGIN: its path under the prefix).
 # Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE, PLUGIN; PYTHON and
-# PYTHON_SITE (the interpreter and the package folder under the prefix; empty: no module built).
+# PYTHON_SITE (the interpreter and the package folder under the prefix; empty: no module built);
+# READELF (optional: the installed files' run paths are checked with it).
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER BUILD_TYPE PLUGIN)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "TcasimPackageTest.cmake: -D${var}=... is required")
@@ -57,6 +58,14 @@ run("running the installed tcasim" ${CMAKE_COMMAND} -E env --unset=TCASIM_DATA_D
     "${prefix}/bin/tcasim" solve "${prefix}/share/tcasim/scenarios/circular-manipulator.json")
 if(NOT run_output MATCHES "\"converged\": true")
   message(FATAL_ERROR "the installed tcasim did not solve the installed scenario:\n${run_output}")
+endif()
+
+# No installed program, library, plugin or module looks for libraries in the current directory
+# (READELF: readelf, when CMake found it).
+if(READELF)
+  include(${CMAKE_CURRENT_LIST_DIR}/TcasimRunPaths.cmake)
+  file(GLOB_RECURSE installed_elf LIST_DIRECTORIES false "${prefix}/lib/*.so" "${prefix}/lib/*.so.*")
+  tcasim_check_run_paths("${READELF}" "${prefix}/bin/tcasim" "${prefix}/bin/solve_scenario" ${installed_elf})
 endif()
 
 # `--linear-solver umfpack` loads the installed plugin (found relative to the installed
