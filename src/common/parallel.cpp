@@ -2,12 +2,131 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
+#if defined(__linux__) && defined(__GLIBC__)
+#include <pthread.h>
+#include <sched.h>
+#define TCASIM_PLACE_THREADS 1
+#endif
+
 namespace tcasim {
+
+namespace internal {
+
+std::vector<int> start_cpus(const std::vector<int>& allowed, int current, std::size_t workers) {
+  const auto here = std::find(allowed.begin(), allowed.end(), current);
+  if (allowed.size() < 2 || here == allowed.end()) return {};
+  const std::size_t n = allowed.size();
+  const auto after = static_cast<std::size_t>(here - allowed.begin()) + 1;
+  std::vector<int> cpus;
+  cpus.reserve(workers);
+  for (std::size_t w = 0; w < workers; ++w) cpus.push_back(allowed[(after + w) % n]);
+  return cpus;
+}
+
+}  // namespace internal
+
+namespace {
+
+#ifdef TCASIM_PLACE_THREADS
+/// The further threads of run_parallel, each started on the CPU start_cpus gives it; its
+/// first act is to take the caller's whole CPU set back (a start, not a binding).
+class Workers {
+ public:
+  explicit Workers(std::size_t count) {
+    starts_.reserve(count);
+    ids_.reserve(count);
+    cpu_set_t caller;
+    CPU_ZERO(&caller);
+    if (pthread_getaffinity_np(pthread_self(), sizeof caller, &caller) != 0) return;
+    std::vector<int> allowed;
+    for (int c = 0; c < CPU_SETSIZE; ++c) {
+      if (CPU_ISSET(c, &caller)) allowed.push_back(c);
+    }
+    cpus_ = internal::start_cpus(allowed, sched_getcpu(), count);
+    caller_ = caller;
+  }
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+  ~Workers() { join(); }
+
+  /// Starts body() on a new thread (std::system_error when no thread can be started).
+  void start(const std::function<void()>& body) {
+    auto s = std::make_unique<Start>(Start{&body, caller_, false});
+    pthread_t id{};
+    int rc = EAGAIN;
+    if (ids_.size() < cpus_.size()) {
+      pthread_attr_t attr;
+      if (pthread_attr_init(&attr) == 0) {
+        cpu_set_t one;
+        CPU_ZERO(&one);
+        CPU_SET(cpus_[ids_.size()], &one);
+        s->widen = pthread_attr_setaffinity_np(&attr, sizeof one, &one) == 0;
+        if (s->widen) rc = pthread_create(&id, &attr, &run, s.get());
+        pthread_attr_destroy(&attr);
+      }
+    }
+    if (!s->widen || rc != 0) {  // no start CPU, or it was refused: where Linux puts it
+      s->widen = false;
+      rc = pthread_create(&id, nullptr, &run, s.get());
+    }
+    if (rc != 0) {
+      throw std::system_error(rc, std::generic_category(), "run_parallel: cannot start a thread");
+    }
+    starts_.push_back(std::move(s));
+    ids_.push_back(id);
+  }
+
+  void join() {
+    for (pthread_t id : ids_) pthread_join(id, nullptr);
+    ids_.clear();
+  }
+
+ private:
+  struct Start {
+    const std::function<void()>* body;
+    cpu_set_t caller;
+    bool widen;  ///< started on one CPU: take the caller's set back
+  };
+  static void* run(void* arg) {
+    const Start& s = *static_cast<const Start*>(arg);
+    if (s.widen) (void)pthread_setaffinity_np(pthread_self(), sizeof s.caller, &s.caller);
+    (*s.body)();
+    return nullptr;
+  }
+
+  std::vector<int> cpus_;
+  cpu_set_t caller_{};
+  std::vector<std::unique_ptr<Start>> starts_;
+  std::vector<pthread_t> ids_;
+};
+#else
+/// The further threads of run_parallel, where the system puts them.
+class Workers {
+ public:
+  explicit Workers(std::size_t count) { threads_.reserve(count); }
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+  ~Workers() { join(); }
+  void start(const std::function<void()>& body) { threads_.emplace_back(body); }
+  void join() {
+    for (auto& t : threads_) t.join();
+    threads_.clear();
+  }
+
+ private:
+  std::vector<std::thread> threads_;
+};
+#endif
+
+}  // namespace
 
 std::vector<IndexRange> fixed_chunks(std::size_t count, std::size_t chunk_size) {
   if (chunk_size == 0) throw std::invalid_argument("fixed_chunks: chunk_size must be >= 1");
@@ -34,7 +153,7 @@ void run_parallel(std::size_t count, int jobs, const std::function<void(std::siz
   std::atomic<bool> stop{false};
   std::mutex error_mutex;
   std::exception_ptr first_error;
-  const auto work = [&] {
+  const std::function<void()> work = [&] {
     while (!stop.load()) {
       const std::size_t i = next.fetch_add(1);
       if (i >= count) return;
@@ -48,17 +167,16 @@ void run_parallel(std::size_t count, int jobs, const std::function<void(std::siz
     }
   };
   const std::size_t threads = std::min<std::size_t>(static_cast<std::size_t>(jobs), count);
-  std::vector<std::thread> pool;
-  pool.reserve(threads > 0 ? threads - 1 : 0);
+  Workers pool(threads > 0 ? threads - 1 : 0);
   try {
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    for (std::size_t t = 1; t < threads; ++t) pool.start(work);
   } catch (...) {  // no thread could be started: stop the ones that were, then report
     stop.store(true);
-    for (auto& t : pool) t.join();
+    pool.join();
     throw;
   }
   work();
-  for (auto& t : pool) t.join();
+  pool.join();
   if (first_error) std::rethrow_exception(first_error);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 /// Contiguous index ranges and a small thread pool for independent tasks (the chunks of a
-/// parallel sweep, `tcasim sweep --jobs N`). Standard threads only: no global state.
+/// parallel sweep, `tcasim sweep --jobs N`). No global state.
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -28,6 +28,21 @@ IndexRange part_of(std::size_t count, std::size_t index, std::size_t parts);
 /// thread is one of them), handing the indices out in increasing order as threads become
 /// free. After a task throws, no further index is handed out; once every thread has
 /// stopped, the first exception is rethrown. jobs must be >= 1 (std::invalid_argument).
+///
+/// On Linux each further thread starts on a CPU of its own (start_cpus) and then takes the
+/// caller's whole CPU set, so the scheduler stays free to move it. Linux starts a new thread
+/// on its creator's CPU and moves it to an idle CPU only when it balances the load, which on
+/// a 2-core virtual machine took 3 to 12 ms, while the two threads shared one CPU: that is
+/// most of a 40 ms sweep's loss to a perfect speed-up (docs/benchmarks.md).
 void run_parallel(std::size_t count, int jobs, const std::function<void(std::size_t)>& task);
+
+namespace internal {
+/// The CPUs the `workers` further threads of run_parallel start on (one each, in order):
+/// `allowed` (the caller's CPU set, in increasing order) taken cyclically from the CPU after
+/// `current` (the caller's CPU), which comes last, so the first workers get CPUs of their
+/// own. Empty when fewer than two CPUs are allowed (nothing to spread over) or when
+/// `current` is not among them.
+std::vector<int> start_cpus(const std::vector<int>& allowed, int current, std::size_t workers);
+}  // namespace internal
 
 }  // namespace tcasim

@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#if defined(__linux__) && defined(__GLIBC__)
+#include <pthread.h>
+#include <sched.h>
+#endif
 
 namespace tcasim {
 namespace {
@@ -85,6 +91,70 @@ TEST(RunParallel, RethrowsTheFirstErrorAndStopsHandingOutIndices) {
                             }),
                std::runtime_error);
 }
+
+TEST(StartCpus, GivesTheFirstWorkersCpusOtherThanTheCallersOne) {
+  using internal::start_cpus;
+  // Two CPUs, the caller on either: the worker starts on the other one.
+  EXPECT_EQ(start_cpus({0, 1}, 0, 1), (std::vector<int>{1}));
+  EXPECT_EQ(start_cpus({0, 1}, 1, 1), (std::vector<int>{0}));
+  // More workers than free CPUs: cyclic, the caller's CPU last in every round.
+  EXPECT_EQ(start_cpus({0, 1}, 0, 3), (std::vector<int>{1, 0, 1}));
+  EXPECT_EQ(start_cpus({2, 5, 7, 9}, 5, 5), (std::vector<int>{7, 9, 2, 5, 7}));
+  EXPECT_EQ(start_cpus({2, 5, 7, 9}, 9, 2), (std::vector<int>{2, 5}));
+  // Nothing to spread over, or a caller outside its own set (sched_getcpu failed: -1).
+  EXPECT_TRUE(start_cpus({3}, 3, 2).empty());
+  EXPECT_TRUE(start_cpus({}, 0, 2).empty());
+  EXPECT_TRUE(start_cpus({0, 1}, -1, 2).empty());
+  EXPECT_TRUE(start_cpus({0, 1}, 0, 0).empty());
+}
+
+#if defined(__linux__) && defined(__GLIBC__)
+std::set<int> cpu_set_of_this_thread() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  EXPECT_EQ(pthread_getaffinity_np(pthread_self(), sizeof set, &set), 0);
+  std::set<int> cpus;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (CPU_ISSET(c, &set)) cpus.insert(c);
+  }
+  return cpus;
+}
+
+// The workers start on a CPU of their own, but only start there: each runs its tasks with the
+// caller's whole CPU set, whatever that set is.
+void expect_workers_run_with_the_callers_cpu_set() {
+  const std::set<int> caller = cpu_set_of_this_thread();
+  std::mutex m;
+  std::vector<std::set<int>> seen;
+  run_parallel(64, 4, [&](std::size_t) {
+    const std::set<int> mine = cpu_set_of_this_thread();
+    const std::lock_guard<std::mutex> lock(m);
+    seen.push_back(mine);
+    std::this_thread::sleep_for(std::chrono::microseconds(200));  // let every thread take some
+  });
+  ASSERT_EQ(seen.size(), 64u);
+  for (const auto& s : seen) EXPECT_EQ(s, caller);
+}
+
+TEST(RunParallel, WorkersRunWithTheCallersCpuSet) {
+  expect_workers_run_with_the_callers_cpu_set();
+  // A caller restricted to all its CPUs but the last (one of two, on a 2-core machine): so
+  // are its workers.
+  const std::set<int> all = cpu_set_of_this_thread();
+  ASSERT_FALSE(all.empty());
+  if (all.size() < 2) GTEST_SKIP() << "one CPU: no smaller set to restrict the caller to";
+  std::thread restricted([&] {
+    cpu_set_t fewer;
+    CPU_ZERO(&fewer);
+    for (int c : all) {
+      if (c != *all.rbegin()) CPU_SET(c, &fewer);
+    }
+    ASSERT_EQ(pthread_setaffinity_np(pthread_self(), sizeof fewer, &fewer), 0);
+    expect_workers_run_with_the_callers_cpu_set();
+  });
+  restricted.join();
+}
+#endif
 
 }  // namespace
 }  // namespace tcasim
