@@ -41,6 +41,7 @@ namespace {
 class Workers {
  public:
   explicit Workers(std::size_t count) {
+    if (count == 0) return;  // the caller alone: nothing to place
     starts_.reserve(count);
     ids_.reserve(count);
     cpu_set_t caller;

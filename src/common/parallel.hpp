@@ -32,8 +32,8 @@ IndexRange part_of(std::size_t count, std::size_t index, std::size_t parts);
 /// On Linux each further thread starts on a CPU of its own (start_cpus) and then takes the
 /// caller's whole CPU set, so the scheduler stays free to move it. Linux starts a new thread
 /// on its creator's CPU and moves it to an idle CPU only when it balances the load, which on
-/// a 2-core virtual machine took 3 to 12 ms, while the two threads shared one CPU: that is
-/// most of a 40 ms sweep's loss to a perfect speed-up (docs/benchmarks.md).
+/// a 2-core virtual machine took 3 to 12 ms while the two threads shared one CPU: 12 % of the
+/// time of a 1000-point sweep on 2 threads (docs/benchmarks.md).
 void run_parallel(std::size_t count, int jobs, const std::function<void(std::size_t)>& task);
 
 namespace internal {
