@@ -56,6 +56,10 @@ def main():
     if a.machine and len(cpus) < a.jobs:
         print(f"sweep_jobs: --machine needs {a.jobs} CPUs, this process may use {len(cpus)}", file=sys.stderr)
         return 2
+    if a.machine and a.repeats < 2:
+        print("sweep_jobs: --machine needs --repeats 2 or more (the first repeat makes the reference CSV)",
+              file=sys.stderr)
+        return 2
     step = (a.stop - a.start) / (a.points - 1)
     sweep = [a.tcasim, "sweep", a.scenario, "--actuator", a.actuator, "--method", a.method,
              "--temperatures-degC", f"{a.start}:{a.stop}:{step!r}"] + extra
