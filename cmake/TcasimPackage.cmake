@@ -25,15 +25,24 @@ add_library(tcasim_tcasim INTERFACE)
 add_library(tcasim::tcasim ALIAS tcasim_tcasim)
 set_target_properties(tcasim_tcasim PROPERTIES EXPORT_NAME tcasim)
 
-# Shared libraries (BUILD_SHARED_LIBS) installed: each finds the others in its own folder and
-# the program finds them in the library folder, wherever the prefix is moved.
+# Run paths. A static build (the default) needs none and sets none. Shared libraries
+# (BUILD_SHARED_LIBS) find each other in their own folder and the program finds them in the
+# library folder, wherever the prefix is moved: $ORIGIN run paths. The build tree has the
+# install's layout (bin/, <libdir>/ with the libraries, <libdir>/tcasim/ with the plugin), so
+# it is built with those same run paths (BUILD_WITH_INSTALL_RPATH). Otherwise CMake would
+# give the build tree's files their own run paths padded with empty entries, room for the
+# install's to be written in on install, and an empty entry means the current directory: a
+# library of that name wherever the program is started would be loaded. ctest
+# run_paths_name_no_current_directory checks the build tree, the package test the install.
 file(RELATIVE_PATH _tcasim_bin_to_lib "${CMAKE_INSTALL_FULL_BINDIR}" "${CMAKE_INSTALL_FULL_LIBDIR}")
+set(TCASIM_BUILD_LIB_DIR "${PROJECT_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}")
 set(_tcasim_targets tcasim_tcasim)
 foreach(component IN LISTS TCASIM_COMPONENTS)
   set(target tcasim_${component})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${component})
   if(BUILD_SHARED_LIBS)
-    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN")
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN" BUILD_WITH_INSTALL_RPATH ON
+                          LIBRARY_OUTPUT_DIRECTORY "${TCASIM_BUILD_LIB_DIR}")
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
   target_link_libraries(tcasim_tcasim INTERFACE tcasim::${component})
@@ -64,11 +73,17 @@ install(FILES ${PROJECT_BINARY_DIR}/tcasimConfig.cmake ${PROJECT_BINARY_DIR}/tca
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${TCASIM_INSTALL_DATADIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/validation/scenarios/ DESTINATION ${TCASIM_INSTALL_DATADIR}/scenarios
         COMPONENT runtime)
-# Only shared libraries need a run path. Without one, CMake gives the build tree's programs a
-# run path of empty entries (room for the install one), and an empty entry means the current
-# directory: the program would load a library of that name from wherever it is started.
+# The program (build tree: bin/, as installed with the default CMAKE_INSTALL_BINDIR; with
+# another one the build tree's program keeps CMake's own build run path).
 if(BUILD_SHARED_LIBS)
   set_target_properties(tcasim PROPERTIES INSTALL_RPATH "$ORIGIN/${_tcasim_bin_to_lib}")
+  get_target_property(_tcasim_bin tcasim RUNTIME_OUTPUT_DIRECTORY)
+  file(RELATIVE_PATH _tcasim_build_bin_to_lib "${_tcasim_bin}" "${TCASIM_BUILD_LIB_DIR}")
+  if(_tcasim_build_bin_to_lib STREQUAL _tcasim_bin_to_lib)
+    set_target_properties(tcasim PROPERTIES BUILD_WITH_INSTALL_RPATH ON)
+  endif()
+  unset(_tcasim_bin)
+  unset(_tcasim_build_bin_to_lib)
 endif()
 install(TARGETS tcasim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 unset(_tcasim_targets)
