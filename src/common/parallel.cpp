@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -60,28 +59,22 @@ class Workers {
 
   /// Starts body() on a new thread (std::system_error when no thread can be started).
   void start(const std::function<void()>& body) {
-    auto s = std::make_unique<Start>(Start{&body, caller_, false});
+    starts_.push_back(std::make_unique<Start>(Start{&body, nullptr}));
+    Start* s = starts_.back().get();
     pthread_t id{};
-    int rc = EAGAIN;
-    if (ids_.size() < cpus_.size()) {
-      pthread_attr_t attr;
-      if (pthread_attr_init(&attr) == 0) {
-        cpu_set_t one;
-        CPU_ZERO(&one);
-        CPU_SET(cpus_[ids_.size()], &one);
-        s->widen = pthread_attr_setaffinity_np(&attr, sizeof one, &one) == 0;
-        if (s->widen) rc = pthread_create(&id, &attr, &run, s.get());
-        pthread_attr_destroy(&attr);
-      }
+    int rc = -1;
+    if (ids_.size() < cpus_.size()) {  // on its start CPU
+      s->widen_to = &caller_;
+      rc = create_on(cpus_[ids_.size()], s, id);
     }
-    if (!s->widen || rc != 0) {  // no start CPU, or it was refused: where Linux puts it
-      s->widen = false;
-      rc = pthread_create(&id, nullptr, &run, s.get());
+    if (rc != 0) {  // no start CPU, or it was refused: where Linux puts it
+      s->widen_to = nullptr;
+      rc = pthread_create(&id, nullptr, &run, s);
     }
     if (rc != 0) {
+      starts_.pop_back();
       throw std::system_error(rc, std::generic_category(), "run_parallel: cannot start a thread");
     }
-    starts_.push_back(std::move(s));
     ids_.push_back(id);
   }
 
@@ -93,12 +86,24 @@ class Workers {
  private:
   struct Start {
     const std::function<void()>* body;
-    cpu_set_t caller;
-    bool widen;  ///< started on one CPU: take the caller's set back
+    const cpu_set_t* widen_to;  ///< started on one CPU: the set to take back first
   };
+  static int create_on(int cpu, Start* s, pthread_t& id) {
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0) return -1;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(cpu, &one);
+    int rc = pthread_attr_setaffinity_np(&attr, sizeof one, &one);
+    if (rc == 0) rc = pthread_create(&id, &attr, &run, s);
+    pthread_attr_destroy(&attr);
+    return rc;
+  }
   static void* run(void* arg) {
     const Start& s = *static_cast<const Start*>(arg);
-    if (s.widen) (void)pthread_setaffinity_np(pthread_self(), sizeof s.caller, &s.caller);
+    if (s.widen_to != nullptr) {
+      (void)pthread_setaffinity_np(pthread_self(), sizeof *s.widen_to, s.widen_to);
+    }
     (*s.body)();
     return nullptr;
   }
