@@ -73,7 +73,7 @@ cosserat::Options rk8_options(double tolerance) {
 
 Eigen::Vector3d tip(const rod::RodModel& m, const cosserat::Options& o) {
   cosserat::ShootingSolver solver(m, o);
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   cosserat::Solution sol;
   const cosserat::Summary s = solver.solve(act, sol);
   if (!s.converged()) std::printf("  (not converged: %s)\n", s.message.c_str());
@@ -126,8 +126,8 @@ void manipulator_args(benchmark::internal::Benchmark* b) {
 
 /// Times solve(act) from a copy of `start` (an empty Solution: a cold solve; the copy is
 /// inside the timing, about 0.3 us with a path); reports the IVP count of one solve.
-void time_solves(benchmark::State& state, cosserat::ShootingSolver& solver,
-                 const cosserat::Actuation& act, const cosserat::Solution& start) {
+void time_solves(benchmark::State& state, cosserat::ShootingSolver& solver, const rod::Loads& act,
+                 const cosserat::Solution& start) {
   int ivps = 0;
   for (auto _ : state) {
     cosserat::Solution sol = start;
@@ -142,14 +142,13 @@ void time_solves(benchmark::State& state, cosserat::ShootingSolver& solver,
 void BM_CircularManipulatorCold90degC(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(90.0));
   cosserat::ShootingSolver solver(m, manipulator_options(state));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_CircularManipulatorCold90degC)->Apply(manipulator_args);
 
 /// Sweeps 25 degC (cold) to last_degC in 5 degC warm steps; returns the last solution.
-cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, cosserat::Actuation& act,
-                            int last_degC) {
+cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, rod::Loads& act, int last_degC) {
   cosserat::Solution sol;
   for (int t = 25; t <= last_degC; t += 5) {
     act.set_temperature_K(0, units::degC_to_K(t));
@@ -162,7 +161,7 @@ cosserat::Solution sweep_to(cosserat::ShootingSolver& solver, cosserat::Actuatio
 void BM_CircularManipulatorWarmStepTo90degC(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
   cosserat::ShootingSolver solver(m, manipulator_options(state));
-  cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   const cosserat::Solution at85 = sweep_to(solver, act, 85);
   act.set_temperature_K(0, units::degC_to_K(90.0));
   time_solves(state, solver, act, at85);
@@ -173,7 +172,7 @@ BENCHMARK(BM_CircularManipulatorWarmStepTo90degC)->Apply(manipulator_args);
 void BM_CircularManipulatorWarmSweepStep(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
   cosserat::ShootingSolver solver(m, manipulator_options(state));
-  cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   const cosserat::Solution start = sweep_to(solver, act, 25);  // outside the timing
   int steps = 0;
   long ivps = 0;
@@ -196,7 +195,7 @@ BENCHMARK(BM_CircularManipulatorWarmSweepStep)->Apply(manipulator_args);
 void BM_SteelTendonRodCold(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::steel_tendon_rod();
   cosserat::ShootingSolver solver(m, options(kSteelSteps));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_SteelTendonRodCold)->Unit(benchmark::kMicrosecond);
@@ -206,7 +205,7 @@ void BM_SteelTendonRodColdRk8(benchmark::State& state) {
   cosserat::Options o = options(kSteelRk8Steps);
   o.integrator.method = ode::Method::kRk8;
   cosserat::ShootingSolver solver(m, o);
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_SteelTendonRodColdRk8)->Unit(benchmark::kMicrosecond);
@@ -234,7 +233,7 @@ constexpr double kSteelWarmPerturbation = 1e-3;
 void BM_SteelTendonRodWarmPerturbed(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::steel_tendon_rod();
   cosserat::ShootingSolver solver(m, steel_options(state));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   cosserat::Solution start;
   if (!solver.solve(act, start).converged()) state.SkipWithError("cold solve failed");
   start.unknowns *= 1.0 + kSteelWarmPerturbation;
@@ -247,7 +246,7 @@ BENCHMARK(BM_SteelTendonRodWarmPerturbed)->Apply(steel_warm_args);
 void BM_SteelTendonRodColdSameOptions(benchmark::State& state) {
   const rod::RodModel m = cosserat::testing::steel_tendon_rod();
   cosserat::ShootingSolver solver(m, steel_options(state));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   time_solves(state, solver, act, cosserat::Solution());
 }
 BENCHMARK(BM_SteelTendonRodColdSameOptions)->Apply(steel_warm_args);
@@ -256,7 +255,7 @@ BENCHMARK(BM_SteelTendonRodColdSameOptions)->Apply(steel_warm_args);
 void print_sweep_accuracy(const char* name, const cosserat::Options& o) {
   const rod::RodModel m = cosserat::testing::circular_manipulator(units::degC_to_K(25.0));
   cosserat::ShootingSolver solver(m, o), reference(m, options(4096, 1e-12));
-  cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   cosserat::Solution sol, ref;
   double worst = 0.0, at90 = 0.0;
   int worst_degC = 25;

@@ -43,7 +43,7 @@ cosserat::Options options(int steps) {
 void inverse_iteration(benchmark::State& state, cosserat::TipDerivativeMethod method) {
   const rod::RodModel m = two_tca_rod();
   cosserat::ShootingSolver solver(m, options(static_cast<int>(state.range(0))));
-  cosserat::Actuation a = cosserat::Actuation::from_model(m);
+  rod::Loads a = rod::Loads::from_model(m);
   a.set_temperature_K(0, units::degC_to_K(70.0));
   a.set_temperature_K(1, units::degC_to_K(110.0));
   cosserat::Solution sol;
@@ -84,7 +84,7 @@ void BM_TargetSolveFromRest(benchmark::State& state) {
   const rod::RodModel m = two_tca_rod();
   const int steps = static_cast<int>(state.range(0));
   cosserat::ShootingSolver solver(m, options(steps));
-  cosserat::Actuation goal = cosserat::Actuation::from_model(m);
+  rod::Loads goal = rod::Loads::from_model(m);
   goal.set_temperature_K(0, units::degC_to_K(70.0));
   goal.set_temperature_K(1, units::degC_to_K(110.0));
   cosserat::Solution gs;
@@ -92,7 +92,7 @@ void BM_TargetSolveFromRest(benchmark::State& state) {
   const Eigen::Vector3d target = gs.tip_state.head<3>();
   int iterations = 0, solves = 0;
   for (auto _ : state) {
-    cosserat::Actuation a = cosserat::Actuation::from_model(m);  // rest: 25 degC
+    rod::Loads a = rod::Loads::from_model(m);  // rest: 25 degC
     cosserat::Solution sol;
     const cosserat::InverseResult r = cosserat::solve_inverse(solver, m, target, {}, a, sol);
     if (!r.converged()) state.SkipWithError("inverse did not converge");

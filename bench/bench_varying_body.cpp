@@ -44,7 +44,7 @@ int steps_for(bool tapered) {
       // The cost of one cold solve at these steps: Newton iterations, IVPs, continuation steps.
       cosserat::ShootingSolver solver(m, rk4(n));
       cosserat::Solution sol;
-      const cosserat::Summary s = solver.solve(cosserat::Actuation::from_model(m), sol);
+      const cosserat::Summary s = solver.solve(rod::Loads::from_model(m), sol);
       std::printf("%s: %d RK4 steps, tip error %.2e m (reference 2048 steps); cold solve: %d "
                   "Newton iterations, %d IVPs, %d continuation steps\n",
                   tapered ? "tapered" : "uniform", n, err, s.iterations, s.ivp_count,
@@ -58,7 +58,7 @@ int steps_for(bool tapered) {
 void BM_ColdSolve(benchmark::State& state, bool tapered, int steps) {
   const rod::RodModel m = rod::parse_scenario(tentacle(tapered));
   cosserat::ShootingSolver solver(m, rk4(steps));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   for (auto _ : state) {
     cosserat::Solution sol;
     const cosserat::Summary s = solver.solve(act, sol);
@@ -73,7 +73,7 @@ void BM_ColdSolve(benchmark::State& state, bool tapered, int steps) {
 /// at each grid point (RodRhs::LocalMemo), which the solves above find stored.
 void BM_NewSolverColdSolve(benchmark::State& state, bool tapered, int steps) {
   const rod::RodModel m = rod::parse_scenario(tentacle(tapered));
-  const cosserat::Actuation act = cosserat::Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   for (auto _ : state) {
     cosserat::ShootingSolver solver(m, rk4(steps));
     cosserat::Solution sol;

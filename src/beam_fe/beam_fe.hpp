@@ -123,8 +123,36 @@ struct PointStrain {
   Eigen::Vector3d omega_B;
 };
 
+/// The loads of one solve on the mesh (Discretization::load_case; the FE dynamics builds its
+/// own with make_load_case): the applied loads (rod::Loads::applied, load scale folded in)
+/// and their consistent nodal forces, computed once per solve. The one place the FE forms the
+/// external load terms and their tangent (subtract).
+struct LoadCase {
+  rod::Loads loads;  ///< applied loads: drive tensions, TCA segments, tip wrench, gravity
+  /// On the free-node dofs (6 per node, forces only), at load factor 1: gravity
+  /// (int N_a psi A ds) g at every node and the tip force with the tip mass's weight
+  /// (rod::tip_force_with_weight_W_N) at the tip node [N].
+  Eigen::VectorXd nodal_force_W_N;
+  double tip_mass_kg = 0.0;  ///< the point mass whose weight the tip force includes [kg]
+
+  /// r -= lambda (nodal forces, and the world-frame tip moment M_e as the virtual work
+  /// M_e . dtheta_W = (R^T M_e) . dtheta_B, i.e. m(L) = M_e); with `tangent`, its part
+  /// d/deta of -exp(-eta) R^T M = -hat(R^T M) at the tip rotation's entries (which must be in
+  /// the pattern). `r` holds the free-node rows first.
+  void subtract(const State& state, double lambda, Eigen::VectorXd& r,
+                Eigen::SparseMatrix<double>* tangent) const;
+};
+
+/// A LoadCase of `loads` (validated against `model`, applied) on a mesh whose free node k
+/// (k = 1 .. nodes - 1) carries the mass node_mass_kg[k] = int N_k psi A ds [kg] (index 0,
+/// the clamped base node, is ignored), with a tip point mass tip_mass_kg.
+LoadCase make_load_case(const rod::RodModel& model, const rod::Loads& loads,
+                        const std::vector<double>& node_mass_kg, double tip_mass_kg);
+
 /// The discrete problem: mesh, degrees of freedom, residual and tangent. Keeps a pointer to
 /// the model (which must outlive it) and caches the tangent's pattern slots (not thread-safe).
+/// The model is constant: every load (drive tensions and temperatures, tip wrench, gravity)
+/// comes in a LoadCase per call.
 class Discretization {
  public:
   /// Validates the options (InputError naming `elements`, `order`, ...).
@@ -156,9 +184,17 @@ class Discretization {
   /// The stress-free reference configuration (exact arc of constant omega*), tensions 0.
   State reference_state() const;
 
-  /// Residual at load factor lambda (and the tangent when `tangent` is non-null; its
-  /// sparsity pattern is the same on every call).
-  Eigen::VectorXd residual(const State& state, double lambda,
+  /// Per node, int N_a psi A ds over the mesh by the element's Gauss rule [kg] (the weights
+  /// of the consistent gravity loads; exact for a uniform body).
+  const std::vector<double>& node_mass_kg() const { return node_mass_kg_; }
+  /// make_load_case of `loads` on this mesh (its node masses, the model's tip mass).
+  LoadCase load_case(const rod::Loads& loads) const;
+
+  /// Residual at load factor lambda under `loads` (and the tangent when `tangent` is
+  /// non-null; its sparsity pattern is the same on every call): internal forces, the TCA rows
+  /// at the loads' segment temperatures ramped by lambda (rod::ramp_segments), the tip
+  /// constraint, minus LoadCase::subtract.
+  Eigen::VectorXd residual(const State& state, const LoadCase& loads, double lambda,
                            Eigen::SparseMatrix<double>* tangent = nullptr) const;
 
   /// Applies an increment dx (dof_count) to a state: p += dp, R <- R exp(dtheta), T += dT,
@@ -180,7 +216,7 @@ class Discretization {
   std::vector<PointStrain> strains(const State& state) const;
 
   /// Scale of the relative tolerance at lambda: max(||f_ext||_inf, max_i c_i |T_i|).
-  double residual_scale(const State& state, double lambda) const;
+  double residual_scale(const State& state, const LoadCase& loads, double lambda) const;
 
   /// Round-off level of the residual rows: force rows (and TCA rows) [N], moment rows [N m].
   struct Floor {
@@ -193,8 +229,8 @@ class Discretization {
   Floor round_off_floor(double added_se_N = 0.0, double added_bt_Nm2 = 0.0) const;
 
   /// The convergence test of Summary::Status::kConverged, row by row.
-  bool within_tolerance(const Eigen::VectorXd& r, const State& state, double lambda,
-                        const Options& options) const;
+  bool within_tolerance(const Eigen::VectorXd& r, const State& state, const LoadCase& loads,
+                        double lambda, const Options& options) const;
 
   /// The increment dx with retract(b, dx) = a (positions, rotation logarithms, TCA tensions,
   /// reaction components): used to extrapolate converged load steps.
@@ -206,10 +242,10 @@ class Discretization {
   /// tip loads and the tip constraint are ignored (it is a starting guess; the reaction is 0).
   /// False, with `state` untouched, without actuators (the guess would be the reference),
   /// for helical routing, or when the TCA law cannot be evaluated.
-  bool constant_strain_guess(double lambda, State& state) const;
+  bool constant_strain_guess(const LoadCase& loads, double lambda, State& state) const;
 
-  /// Sets the tensions of tension drives to lambda times their value.
-  void apply_prescribed_tensions(State& state, double lambda) const;
+  /// Sets the tensions of tension drives to lambda times their value in `loads`.
+  void apply_prescribed_tensions(const LoadCase& loads, State& state, double lambda) const;
 
  private:
   struct Quadrature {
@@ -222,7 +258,7 @@ class Discretization {
   Quadrature quad_;
   std::vector<int> tca_actuators_;   // actuator index of each TCA unknown
   std::vector<int> tca_unknown_;     // per actuator: its TCA unknown or -1
-  Eigen::VectorXd nodal_dead_load_;  // gravity + tip force on free-node dofs (lambda = 1)
+  std::vector<double> node_mass_kg_;                // per node int N_a psi A ds (element rule)
   std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position
   Eigen::Vector3d tip_goal_W_m_ = Eigen::Vector3d::Zero();       // tip_constraint.position

@@ -20,14 +20,52 @@ using Eigen::VectorXd;
 
 /// The TCA row of one string: phi(T, delta) with coil contact (tca::contact_residual), zero
 /// where the tension T and the elongation delta satisfy the TCA law.
-tca::ContactResidual tca_row(const rod::Actuator& act, double tension_N, double elongation_m,
-                             double lambda) {
+tca::ContactResidual tca_row(const rod::Actuator& act, const std::vector<tca::Segment>& targets,
+                             double tension_N, double elongation_m, double lambda) {
   std::vector<tca::Segment> segments;
-  rod::ramp_segments(act.drive.tca->material(), act.drive.segments, lambda, segments);
+  rod::ramp_segments(act.drive.tca->material(), targets, lambda, segments);
   return tca::contact_residual(*act.drive.tca, tension_N, elongation_m, segments);
 }
 
 }  // namespace
+
+LoadCase make_load_case(const rod::RodModel& model, const rod::Loads& loads,
+                        const std::vector<double>& node_mass_kg, double tip_mass_kg) {
+  loads.validate(model);
+  LoadCase c;
+  c.loads = loads.applied(model);
+  c.tip_mass_kg = tip_mass_kg;
+  const int nodes = static_cast<int>(node_mass_kg.size());
+  assert(nodes >= 2);
+  const Vector3d& g = c.loads.gravity_W_m_s2;
+  c.nodal_force_W_N = VectorXd::Zero(6 * (nodes - 1));
+  for (int k = 1; k < nodes; ++k) c.nodal_force_W_N.segment<3>(6 * (k - 1)) = node_mass_kg[k] * g;
+  // The tip force and the tip mass's weight m g (rod::tip_force_with_weight_W_N).
+  c.nodal_force_W_N.segment<3>(6 * (nodes - 2)) +=
+      tip_mass_kg == 0.0 ? c.loads.tip_force_W_N
+                         : Vector3d(c.loads.tip_force_W_N + tip_mass_kg * g);
+  return c;
+}
+
+void LoadCase::subtract(const State& state, double lambda, VectorXd& r,
+                        Eigen::SparseMatrix<double>* tangent) const {
+  const Eigen::Index free_dofs = nodal_force_W_N.size();
+  r.head(free_dofs) -= lambda * nodal_force_W_N;
+  const Matrix3d R_tip = state.q_WB.back().toRotationMatrix();
+  const Vector3d M_B = lambda * R_tip.transpose() * loads.tip_moment_W_Nm;
+  const Eigen::Index tip_rot = free_dofs - 3;
+  r.segment<3>(tip_rot) -= M_B;
+  if (tangent) {
+    // d/deta of -exp(-eta) R^T M = -hat(R^T M).
+    const Matrix3d Km = -so3::hat(M_B);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) tangent->coeffRef(tip_rot + i, tip_rot + j) += Km(i, j);
+  }
+}
+
+LoadCase Discretization::load_case(const rod::Loads& loads) const {
+  return make_load_case(*model_, loads, node_mass_kg_, model_->tip_mass_kg);
+}
 
 Discretization::Discretization(const rod::RodModel& model, const Options& options)
     : model_(&model), elements_(options.elements), order_(options.order) {
@@ -86,29 +124,29 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     const rod::Actuator& act = model.actuators[i];
     if (act.drive.type != rod::Drive::Type::kTca) continue;
-    if (!act.drive.tca || act.drive.segments.empty()) {
+    if (!act.drive.tca) {
       throw InputError(fmt::format("actuators[{}].drive", i), act.drive.tca_id,
-                       "a TCA drive needs a resolved TCA and at least one segment");
+                       "a TCA drive needs a resolved TCA");
     }
     tca_unknown_[i] = static_cast<int>(tca_actuators_.size());
     tca_actuators_.push_back(static_cast<int>(i));
   }
 
-  // Consistent nodal dead loads: gravity int N_a psi A g ds (exact with the element rule:
-  // degree order <= 2 p - 1) and the tip force.
+  // Weights of the consistent gravity loads, int N_a psi A ds (exact with the element rule
+  // on a uniform body: degree order <= 2 p - 1).
   const int nodes = node_count();
-  nodal_dead_load_ = VectorXd::Zero(6 * (nodes - 1));
+  node_mass_kg_.assign(static_cast<std::size_t>(nodes), 0.0);
   const bool uniform = model.uniform_body();
+  const double uniform_psi_A = model.material.density_kg_m3 * model.section.area_m2;
   for (int e = 0; e < elements_; ++e) {
     for (std::size_t g = 0; g < quad_.xi.size(); ++g) {
       const double xi = quad_.xi[g];
       const double h_e = element_h_m_[static_cast<std::size_t>(e)];
       const double wj = quad_.weight[g] * 0.5 * h_e;
-      const Vector3d f_W =
-          uniform ? model.weight_per_length_W_N_m()
-                  : Vector3d(model.mass_per_length_kg_m(element_s0_m_[static_cast<std::size_t>(e)] +
-                                                        0.5 * (xi + 1.0) * h_e) *
-                             model.gravity_W_m_s2);
+      const double psi_A =
+          uniform ? uniform_psi_A
+                  : model.mass_per_length_kg_m(element_s0_m_[static_cast<std::size_t>(e)] +
+                                               0.5 * (xi + 1.0) * h_e);
       double N[3];
       if (order_ == 1) {
         N[0] = 0.5 * (1.0 - xi);
@@ -118,18 +156,9 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
         N[1] = 1.0 - xi * xi;
         N[2] = 0.5 * xi * (xi + 1.0);
       }
-      for (int a = 0; a <= order_; ++a) {
-        const int node = e * order_ + a;
-        if (node == 0) continue;
-        nodal_dead_load_.segment<3>(6 * (node - 1)) += wj * N[a] * f_W;
-      }
+      for (int a = 0; a <= order_; ++a) node_mass_kg_[e * order_ + a] += wj * N[a] * psi_A;
     }
   }
-  // Tip force and the tip mass's weight m g (rod::tip_force_with_weight_W_N).
-  nodal_dead_load_.segment<3>(6 * (nodes - 2)) +=
-      model.tip_mass_kg == 0.0
-          ? model.tip_force_W_N
-          : Vector3d(model.tip_force_W_N + model.tip_mass_kg * model.gravity_W_m_s2);
 
   // Tip constraint: held world directions (all three when pinned, the normal for a contact),
   // target ramped from the stress-free tip (exact arc of omega*, as reference_state).
@@ -210,10 +239,12 @@ State Discretization::reference_state() const {
   return st;
 }
 
-void Discretization::apply_prescribed_tensions(State& state, double lambda) const {
+void Discretization::apply_prescribed_tensions(const LoadCase& loads, State& state,
+                                               double lambda) const {
   for (std::size_t i = 0; i < model_->actuators.size(); ++i) {
     const rod::Drive& d = model_->actuators[i].drive;
-    if (d.type == rod::Drive::Type::kTension) state.tensions_N[i] = lambda * d.tension_N;
+    if (d.type == rod::Drive::Type::kTension)
+      state.tensions_N[i] = lambda * loads.loads.actuators[i].tension_N;
   }
 }
 
@@ -251,7 +282,8 @@ VectorXd Discretization::difference(const State& a, const State& b) const {
   return dx;
 }
 
-bool Discretization::constant_strain_guess(double lambda, State& state) const {
+bool Discretization::constant_strain_guess(const LoadCase& loads, double lambda,
+                                           State& state) const {
   const rod::RodModel& model = *model_;
   const std::size_t n_act = model.actuators.size();
   if (n_act == 0) return false;  // the guess would be the reference configuration itself
@@ -266,7 +298,7 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   std::vector<double> T(n_act, 0.0), cT(n_act, 0.0);
   for (std::size_t i = 0; i < n_act; ++i) {
     if (model.actuators[i].drive.type == rod::Drive::Type::kTension)
-      T[i] = lambda * model.actuators[i].drive.tension_N;
+      T[i] = lambda * loads.loads.actuators[i].tension_N;
     cT[i] = model.actuators[i].count * T[i];
   }
   const std::size_t k = tca_actuators_.size();
@@ -274,7 +306,8 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
     std::vector<std::vector<tca::Segment>> segments(n_act);
     for (const int i : tca_actuators_) {
       const rod::Actuator& act = model.actuators[i];
-      rod::ramp_segments(act.drive.tca->material(), act.drive.segments, lambda, segments[i]);
+      rod::ramp_segments(act.drive.tca->material(), loads.loads.actuators[i].segments, lambda,
+                         segments[i]);
     }
     rod::GuessTensionOptions options;
     options.tolerance_rel = 1e-13;  // far below the FE's own tolerance
@@ -302,9 +335,10 @@ bool Discretization::constant_strain_guess(double lambda, State& state) const {
   return true;
 }
 
-double Discretization::residual_scale(const State& state, double lambda) const {
-  double scale = lambda * nodal_dead_load_.cwiseAbs().maxCoeff();
-  scale = std::max(scale, lambda * model_->tip_moment_W_Nm.cwiseAbs().maxCoeff());
+double Discretization::residual_scale(const State& state, const LoadCase& loads,
+                                      double lambda) const {
+  double scale = lambda * loads.nodal_force_W_N.cwiseAbs().maxCoeff();
+  scale = std::max(scale, lambda * loads.loads.tip_moment_W_Nm.cwiseAbs().maxCoeff());
   for (std::size_t i = 0; i < model_->actuators.size(); ++i) {
     scale = std::max(scale, model_->actuators[i].count * std::abs(state.tensions_N[i]));
   }
@@ -337,9 +371,10 @@ Discretization::Floor Discretization::round_off_floor(double added_se_N, double 
   return {force, moment};
 }
 
-bool Discretization::within_tolerance(const VectorXd& r, const State& state, double lambda,
-                                      const Options& options) const {
-  const double base = options.tolerance_abs + options.tolerance_rel * residual_scale(state, lambda);
+bool Discretization::within_tolerance(const VectorXd& r, const State& state, const LoadCase& loads,
+                                      double lambda, const Options& options) const {
+  const double base =
+      options.tolerance_abs + options.tolerance_rel * residual_scale(state, loads, lambda);
   const Floor floor = round_off_floor();
   const int free_dofs = 6 * (node_count() - 1);
   for (int i = 0; i < r.size(); ++i) {
@@ -457,7 +492,7 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
 #endif
 }
 
-VectorXd Discretization::residual(const State& state, double lambda,
+VectorXd Discretization::residual(const State& state, const LoadCase& loads, double lambda,
                                   Eigen::SparseMatrix<double>* tangent) const {
   const rod::RodModel& model = *model_;
   const int n = dof_count();
@@ -493,19 +528,8 @@ VectorXd Discretization::residual(const State& state, double lambda,
     }
     for (std::size_t a = 0; a < n_act; ++a) lengths[a] += ev.lengths_m[a];
   }
-  // External loads: dead nodal forces, and the world-frame tip moment M_e whose virtual
-  // work M_e . dtheta_W = (R^T M_e) . dtheta_B gives m(L) = M_e.
-  r.head(free_dofs) -= lambda * nodal_dead_load_;
-  const Matrix3d R_tip = state.q_WB.back().toRotationMatrix();
-  const Vector3d M_B = lambda * R_tip.transpose() * model.tip_moment_W_Nm;
-  const int tip_rot = free_dofs - 3;
-  r.segment<3>(tip_rot) -= M_B;
-  if (tangent) {
-    // d/deta of -exp(-eta) R^T M = -hat(R^T M).
-    const Matrix3d Km = -so3::hat(M_B);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) tangent->coeffRef(tip_rot + i, tip_rot + j) += Km(i, j);
-  }
+  // External loads: dead nodal forces and the world-frame tip moment.
+  loads.subtract(state, lambda, r, tangent);
   // TCA rows: phi_i(T_i, l_i - rest_i) (tca::contact_residual: T_i - F_tca with coil
   // contact); columns: c_i dl_i/dq.
   const std::size_t stride = 2 * static_cast<std::size_t>(free_dofs) + 1;
@@ -514,7 +538,8 @@ VectorXd Discretization::residual(const State& state, double lambda,
     const rod::Actuator& act = model.actuators[a];
     const int row = free_dofs + static_cast<int>(j);
     const tca::ContactResidual f =
-        tca_row(act, state.tensions_N[a], lengths[a] - act.rest_length_m, lambda);
+        tca_row(act, loads.loads.actuators[a].segments, state.tensions_N[a],
+                lengths[a] - act.rest_length_m, lambda);
     r[row] = f.phi_N;
     if (!tangent) continue;
     const int* slots = &tca_slots_[j * stride];

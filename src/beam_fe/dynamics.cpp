@@ -56,8 +56,8 @@ AlphaParameters alpha_parameters(double rho) {
 struct BeamDynamics::Impl {
   Impl(const rod::RodModel& m, const DynamicsOptions& o);
 
-  /// Loads at which the residual is evaluated (applied; tension drives into `tensions`, TCA
-  /// segments with the thermal states into the model's drives).
+  /// Loads at which the residual is evaluated: `current` (applied, electric drives' segments at
+  /// the thermal states; gravity by this solver's nodal masses).
   void set_loads(const rod::Loads& loads);
   /// The tension drives' tensions into `s` (the TCA tensions are unknowns).
   void set_drive_tensions(State& s) const;
@@ -65,8 +65,6 @@ struct BeamDynamics::Impl {
   VectorXd evaluate(const VectorXd& x, SpMat* J);
   /// Static residual (external loads subtracted) at `st`, tangent in material increments.
   VectorXd static_residual(const State& st, SpMat* K) const;
-  /// External nodal loads into r (r -= f_ext) and the tip moment's tangent into K.
-  void subtract_external(const State& st, VectorXd& r, SpMat* K) const;
   bool within_tolerance(const VectorXd& r, double* scaled) const;
   BeamDynamicsSummary newton_static();
   /// The drives' segment temperatures of the converged state into temperatures_conv.
@@ -75,10 +73,9 @@ struct BeamDynamics::Impl {
   const rod::RodModel& model;
   DynamicsOptions opt;
   AlphaParameters ap;
-  // The model the discretization reads: the options' tip mass, no gravity or tip wrench (this
-  // solver applies the loads of each time itself, so its residual is taken at load factor 1,
-  // where the TCA rows see the temperatures of the drives' segments, set by set_loads).
-  rod::RodModel model_static;
+  double tip_mass_kg = 0.0;  // DynamicsOptions::tip_mass_kg, else the model's
+  // The loads of the current evaluation; the residual is taken at load factor 1.
+  LoadCase current;
   Options fe;
   std::unique_ptr<Discretization> disc_static;
   int nodes = 0, free_dofs = 0, n_act = 0;
@@ -95,9 +92,6 @@ struct BeamDynamics::Impl {
   std::vector<double> node_mass;
   std::vector<Vector3d> node_J;
   std::unique_ptr<damping::StrainRateHistory> kv;  // Kelvin-Voigt history (viscosity > 0)
-  // Loads of the current evaluation.
-  Vector3d g_W = Vector3d::Zero(), F_tip = Vector3d::Zero(), M_tip = Vector3d::Zero();
-  std::vector<double> tensions;
   // Converged step n and trial step n + 1.
   State st, trial;
   VectorXd v, vd, a, v1, vd1, a1, x_last;
@@ -108,15 +102,17 @@ struct BeamDynamics::Impl {
   Discretization::Floor floor{0.0, 0.0};
 };
 
-BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
-    : model(m), opt(o), model_static(m) {
+BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : model(m), opt(o) {
   require(std::isfinite(o.dt_s) && o.dt_s > 0.0, "dynamics.dt_s", o.dt_s, "must be > 0");
   require(o.rho_inf >= 0.0 && o.rho_inf <= 1.0, "dynamics.rho_inf", o.rho_inf, "must be in [0, 1]");
   require(std::isfinite(o.tolerance) && o.tolerance > 0.0, "dynamics.tolerance", o.tolerance,
           "must be > 0");
   require(o.max_iterations >= 1, "dynamics.max_iterations", o.max_iterations, "must be >= 1");
-  require(std::isfinite(o.tip_mass_kg) && o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
-          o.tip_mass_kg, "must be >= 0");
+  if (o.tip_mass_kg) {
+    require(std::isfinite(*o.tip_mass_kg) && *o.tip_mass_kg >= 0.0, "dynamics.tip_mass_kg",
+            *o.tip_mass_kg, "must be >= 0");
+  }
+  tip_mass_kg = o.tip_mass_kg.value_or(m.tip_mass_kg);
   if (m.tip_constraint) {
     throw DomainError("FE dynamics: a tip_constraint is not supported in dynamics yet");
   }
@@ -130,10 +126,6 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
   c_a = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * ap.beta * h);
   c_v = ap.gamma / ap.beta;
   c_e = ap.gamma / (ap.beta * h);
-  model_static.tip_mass_kg = o.tip_mass_kg;
-  model_static.gravity_W_m_s2.setZero();
-  model_static.tip_force_W_N.setZero();
-  model_static.tip_moment_W_Nm.setZero();
   fe.elements = o.elements;
   fe.order = o.order;
   fe.integration = o.integration;
@@ -144,7 +136,7 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
     for (const double s : eta_profile.breakpoints())
       if (s > 0.0 && s < m.length_m) fe.extra_knots_m.push_back(s);
   }
-  disc_static = std::make_unique<Discretization>(model_static, fe);  // validates elements, order
+  disc_static = std::make_unique<Discretization>(m, fe);  // validates elements, order
   nodes = disc_static->node_count();
   free_dofs = 6 * (nodes - 1);
   n_act = static_cast<int>(m.actuators.size());
@@ -196,49 +188,25 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o)
     floor = disc_static->round_off_floor(cB_se, cB_bt);
   }
   v = vd = a = VectorXd::Zero(free_dofs);
-  tensions.assign(n_act, 0.0);
 }
 
 void BeamDynamics::Impl::set_loads(const rod::Loads& loads_in) {
   loads_in.validate(model);
-  const rod::Loads l = loads_in.applied(model);
-  g_W = l.gravity_W_m_s2;
-  F_tip = l.tip_force_W_N;
-  M_tip = l.tip_moment_W_Nm;
+  rod::Loads l = loads_in.applied(model);
   std::vector<std::vector<tca::Segment>> segments(n_act);
-  for (int i = 0; i < n_act; ++i) {
-    tensions[i] = l.actuators[i].tension_N;
-    segments[i] = l.actuators[i].segments;
-  }
+  for (int i = 0; i < n_act; ++i) segments[i] = std::move(l.actuators[i].segments);
   thermal.apply(segments);
-  for (const int i : tca_actuator) model_static.actuators[i].drive.segments = segments[i];
+  for (int i = 0; i < n_act; ++i) l.actuators[i].segments = std::move(segments[i]);
+  // Gravity by the consistent mass's row sums (node_mass, the 3-point rule of the mass matrix).
+  current = make_load_case(model, l, node_mass, tip_mass_kg);
 }
 
 void BeamDynamics::Impl::set_drive_tensions(State& s) const {
-  s.tensions_N.resize(n_act, 0.0);
-  for (int i = 0; i < n_act; ++i) {
-    if (model.actuators[i].drive.type == rod::Drive::Type::kTension) s.tensions_N[i] = tensions[i];
-  }
-}
-
-void BeamDynamics::Impl::subtract_external(const State& s, VectorXd& r, SpMat* Kt) const {
-  // Gravity: consistent nodal loads int rho A N_a ds g; tip force with the tip mass's weight.
-  for (int k = 1; k < nodes; ++k) r.segment<3>(6 * (k - 1)) -= node_mass[k] * g_W;
-  r.segment<3>(free_dofs - 6) -= F_tip + opt.tip_mass_kg * g_W;
-  // World-frame tip moment: virtual work M_e . dtheta_W = (R^T M_e) . dtheta_B.
-  const Vector3d M_B = s.q_WB.back().toRotationMatrix().transpose() * M_tip;
-  r.segment<3>(free_dofs - 3) -= M_B;
-  if (Kt) {
-    const Matrix3d Km = -so3::hat(M_B);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Kt->coeffRef(free_dofs - 3 + i, free_dofs - 3 + j) += Km(i, j);
-  }
+  disc_static->apply_prescribed_tensions(current, s, 1.0);
 }
 
 VectorXd BeamDynamics::Impl::static_residual(const State& s, SpMat* Kt) const {
-  VectorXd r = disc_static->residual(s, 1.0, Kt);
-  subtract_external(s, r, Kt);
-  return r;
+  return disc_static->residual(s, current, 1.0, Kt);
 }
 
 bool BeamDynamics::Impl::within_tolerance(const VectorXd& r, double* scaled) const {
@@ -276,9 +244,8 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
   for (std::size_t j = 0; j < tca_actuator.size(); ++j) {
     trial.tensions_N[tca_actuator[j]] = x[free_dofs + static_cast<int>(j)];
   }
-  VectorXd r = disc_static->residual(trial, 1.0, Jout ? &K : nullptr);
+  VectorXd r = disc_static->residual(trial, current, 1.0, Jout ? &K : nullptr);
   if (kv) kv->add_forces(trial, r, Jout ? &K : nullptr);
-  subtract_external(trial, r, Jout ? &K : nullptr);
   // Inertia: consistent translational mass (world frame), nodal rotational inertia with the
   // gyroscopic term W x J W (body frame), the tip mass at the tip node.
   const int order = disc_static->order(), n = order + 1;
@@ -294,7 +261,7 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
       }
     }
   }
-  r.segment<3>(free_dofs - 6) += opt.tip_mass_kg * vd1.segment<3>(free_dofs - 6);
+  r.segment<3>(free_dofs - 6) += tip_mass_kg * vd1.segment<3>(free_dofs - 6);
   for (int k = 1; k < nodes; ++k) {
     const Vector3d W = v1.segment<3>(6 * (k - 1) + 3);
     const Vector3d JW = node_J[k].cwiseProduct(W);
@@ -342,7 +309,7 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
       }
     }
   }
-  for (int c = 0; c < 3; ++c) add(free_dofs - 6 + c, free_dofs - 6 + c, c_a * opt.tip_mass_kg);
+  for (int c = 0; c < 3; ++c) add(free_dofs - 6 + c, free_dofs - 6 + c, c_a * tip_mass_kg);
   for (int k = 1; k < nodes; ++k) {
     const int b = 6 * (k - 1) + 3;
     const Vector3d W = v1.segment<3>(b);
@@ -359,7 +326,7 @@ VectorXd BeamDynamics::Impl::evaluate(const VectorXd& x, SpMat* Jout) {
 void BeamDynamics::Impl::keep_temperatures() {
   temperatures_conv.assign(n_act, {});
   for (const int i : tca_actuator) {
-    for (const tca::Segment& sg : model_static.actuators[i].drive.segments) {
+    for (const tca::Segment& sg : current.loads.actuators[i].segments) {
       temperatures_conv[i].push_back(sg.temperature_K);
     }
   }
@@ -408,10 +375,11 @@ BeamDynamicsSummary BeamDynamics::initialize(const rod::Loads& loads) {
   Impl& d = *impl_;
   d.thermal.reset(d.model, loads);
   d.set_loads(loads);
-  d.F_c = rod::characteristic_force_N(d.model_static, loads);
+  d.F_c = rod::characteristic_force_N(d.model, loads, d.tip_mass_kg);
   d.t = 0.0;
   d.st = d.disc_static->reference_state();
-  const Summary s = solve(d.model_static, loads, d.fe, d.st);
+  // The static solve is the starting point of this solver's own static Newton iteration.
+  const Summary s = solve(d.model, loads, d.fe, d.st);
   if (!s.converged()) d.st = d.disc_static->reference_state();
   d.st.load_factor = 1.0;
   BeamDynamicsSummary sum = d.newton_static();
@@ -550,12 +518,12 @@ double BeamDynamics::kinetic_energy_J() const {
     const Vector3d W = d.v.segment<3>(6 * (k - 1) + 3);
     T += 0.5 * W.dot(d.node_J[k].cwiseProduct(W));
   }
-  return T + 0.5 * d.opt.tip_mass_kg * d.v.segment<3>(d.free_dofs - 6).squaredNorm();
+  return T + 0.5 * d.tip_mass_kg * d.v.segment<3>(d.free_dofs - 6).squaredNorm();
 }
 
 double BeamDynamics::potential_energy_J() const {
   const Impl& d = *impl_;
-  const rod::RodModel& m = d.model_static;
+  const rod::RodModel& m = d.model;
   // Strain energy with the element's own quadrature (its gradient is the element residual).
   std::vector<double> xi, w;
   const int points = d.fe.order + (d.fe.integration == Integration::kFull ? 1 : 0);
@@ -572,8 +540,9 @@ double BeamDynamics::potential_energy_J() const {
          (de.dot(m.shear_extension_stiffness(s).cwiseProduct(de)) +
           dom.dot(m.bending_torsion_stiffness(s).cwiseProduct(dom)));
   }
-  for (int k = 0; k < d.nodes; ++k) U -= d.node_mass[k] * d.g_W.dot(d.st.p_W_m[k]);
-  U -= (d.F_tip + d.opt.tip_mass_kg * d.g_W).dot(d.st.p_W_m.back());
+  const Vector3d& g_W = d.current.loads.gravity_W_m_s2;
+  for (int k = 0; k < d.nodes; ++k) U -= d.node_mass[k] * g_W.dot(d.st.p_W_m[k]);
+  U -= (d.current.loads.tip_force_W_N + d.tip_mass_kg * g_W).dot(d.st.p_W_m.back());
   const std::vector<double> l = d.disc_static->string_lengths(d.st);
   for (int i = 0; i < d.n_act; ++i) {
     U += m.actuators[i].count * d.st.tensions_N[i] * (l[i] - m.actuators[i].rest_length_m);

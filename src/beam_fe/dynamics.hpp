@@ -58,8 +58,9 @@ struct DynamicsOptions {
   /// body.material.viscosity_Pa_s, a constant or a profile along s (the mesh then has a node at
   /// each breakpoint of the profile), as cosserat::DynamicsOptions::viscosity_Pa_s.
   std::optional<double> viscosity_Pa_s;
-  /// Point mass at the tip [kg] (inertia and weight; replaces the model's tip_mass_kg).
-  double tip_mass_kg = 0.0;
+  /// Point mass at the tip [kg] (inertia and weight). Unset (the default): the model's
+  /// tip_mass_kg, as cosserat::DynamicsOptions::tip_mass_kg.
+  std::optional<double> tip_mass_kg;
 };
 
 /// Outcome of the static initialization or of one time step.

@@ -176,10 +176,10 @@ struct StepResult {
 
 /// The residual (and tangent); false where the state leaves the model's domain (a
 /// TCA stretched past its fiber length: DomainError) or the result is not finite.
-bool evaluate(const Discretization& disc, const State& st, double lambda, SpMat* K, VectorXd& r,
-              std::string* why = nullptr) {
+bool evaluate(const Discretization& disc, const LoadCase& loads, const State& st, double lambda,
+              SpMat* K, VectorXd& r, std::string* why = nullptr) {
   try {
-    r = disc.residual(st, lambda, K);
+    r = disc.residual(st, loads, lambda, K);
   } catch (const DomainError& e) {
     if (why) *why = e.what();
     return false;
@@ -188,19 +188,19 @@ bool evaluate(const Discretization& disc, const State& st, double lambda, SpMat*
   return r.allFinite();
 }
 
-StepResult newton(const Discretization& disc, const Options& options, double lambda, State& st,
-                  SpMat& K, LinearSystem& linear) {
+StepResult newton(const Discretization& disc, const LoadCase& loads, const Options& options,
+                  double lambda, State& st, SpMat& K, LinearSystem& linear) {
   StepResult out;
-  disc.apply_prescribed_tensions(st, lambda);
+  disc.apply_prescribed_tensions(loads, st, lambda);
   VectorXd r;
-  if (!evaluate(disc, st, lambda, &K, r, &out.why)) return out;
+  if (!evaluate(disc, loads, st, lambda, &K, r, &out.why)) return out;
   bool have_tangent = true;  // K is the tangent at st
   bool factored = false;     // `linear` holds a factorization of an earlier tangent of this step
   double contraction = std::numeric_limits<double>::infinity();  // ||r_k||/||r_k-1||, inf norms
   for (int it = 0;; ++it) {
     out.residual_inf = r.lpNorm<Eigen::Infinity>();
-    out.scale = disc.residual_scale(st, lambda);
-    if (disc.within_tolerance(r, st, lambda, options)) {
+    out.scale = disc.residual_scale(st, loads, lambda);
+    if (disc.within_tolerance(r, st, loads, lambda, options)) {
       out.converged = true;
       out.residual = std::move(r);
       return out;
@@ -216,7 +216,7 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
     // without the tangent; a poorer contraction brings the full Newton step back.
     const bool chord = factored && !have_tangent && contraction <= kChordContraction;
     if (!chord) {
-      if (!have_tangent && !evaluate(disc, st, lambda, &K, r, &out.why)) return out;
+      if (!have_tangent && !evaluate(disc, loads, st, lambda, &K, r, &out.why)) return out;
       have_tangent = true;
       if (!linear.factorize(K)) {
         out.why = "the tangent matrix could not be factorized (singular or not finite)";
@@ -246,7 +246,8 @@ StepResult newton(const Discretization& disc, const Options& options, double lam
       State trial = st;
       disc.retract(trial, alpha * dx);
       VectorXd rt;
-      if (!evaluate(disc, trial, lambda, trial_tangent ? &K : nullptr, rt, &trial_why)) continue;
+      if (!evaluate(disc, loads, trial, lambda, trial_tangent ? &K : nullptr, rt, &trial_why))
+        continue;
       st = std::move(trial);
       contraction = rt.lpNorm<Eigen::Infinity>() /
                     std::max(out.residual_inf, std::numeric_limits<double>::min());
@@ -294,13 +295,12 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
   return solve(model, rod::Loads::from_model(model), options, state);
 }
 
-Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Options& options,
+Summary solve(const rod::RodModel& model, const rod::Loads& loads_in, const Options& options,
               State& state) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
-  // The discretization reads the loads from its model: a copy carrying `loads`.
-  const rod::RodModel model = rod::with_loads(model_in, loads);
   const Discretization disc(model, options);  // validates the options
+  const LoadCase loads = disc.load_case(loads_in);  // validates the loads
   if (!state_matches(disc, state)) state = disc.reference_state();
   auto finish = [&](Summary& s) -> Summary {
     s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -332,7 +332,7 @@ Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Opti
     bool predicted = false;
     if (use_predictor && step > 0.0) {
       if (from_reference) {
-        predicted = disc.constant_strain_guess(target, trial);
+        predicted = disc.constant_strain_guess(loads, target, trial);
       } else if (lambda_previous >= 0.0 && lambda > lambda_previous) {
         // Secant predictor: x(target) ~ x(lambda) + (target - lambda)/(lambda - lambda_prev) dx.
         disc.retract(trial, (target - lambda) / (lambda - lambda_previous) *
@@ -340,7 +340,7 @@ Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Opti
         predicted = true;
       }
     }
-    last = newton(disc, options, target, trial, K, linear);
+    last = newton(disc, loads, options, target, trial, K, linear);
     summary.iterations += last.iterations;
     if (last.converged) {
       previous = std::move(state);
@@ -386,21 +386,20 @@ Summary solve(const rod::RodModel& model_in, const rod::Loads& loads, const Opti
     }
   }
   summary.load_factor = lambda;
-  summary.characteristic_force_N =
-      rod::characteristic_force_N(model, rod::Loads::from_model(model));
+  summary.characteristic_force_N = rod::characteristic_force_N(model, loads.loads);
   if (summary.converged()) {
     summary.equilibrium_residual =
         equilibrium_residual(disc, last.residual, summary.characteristic_force_N);
   } else {
     // Report the residual of the returned (last accepted) state at its load factor.
     VectorXd r;
-    summary.residual_inf = evaluate(disc, state, state.load_factor, nullptr, r)
+    summary.residual_inf = evaluate(disc, loads, state, state.load_factor, nullptr, r)
                                ? r.lpNorm<Eigen::Infinity>()
                                : std::numeric_limits<double>::infinity();
-    if (evaluate(disc, state, 1.0, nullptr, r)) {
+    if (evaluate(disc, loads, state, 1.0, nullptr, r)) {
       summary.equilibrium_residual = equilibrium_residual(disc, r, summary.characteristic_force_N);
     }
-    summary.residual_scale = disc.residual_scale(state, state.load_factor);
+    summary.residual_scale = disc.residual_scale(state, loads, state.load_factor);
     if (!summary.message.empty() && summary.load_steps == 0 && state.load_factor == 0.0) {
       summary.message += " (no load step converged; the state is the reference configuration)";
     }

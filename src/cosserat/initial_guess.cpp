@@ -34,7 +34,7 @@ void closed_form(const rod::RodModel& m, const std::vector<double>& cTs, Vec3& e
 
 }  // namespace
 
-Eigen::VectorXd ShootingSolver::Impl::initial_guess(const Actuation& act, double lambda,
+Eigen::VectorXd ShootingSolver::Impl::initial_guess(const rod::Loads& act, double lambda,
                                                     bool with_gravity, bool* used_gravity) {
   if (used_gravity) *used_gravity = false;
   // The guess in 3-D unknowns; a planar problem's lies in the plane (its other components

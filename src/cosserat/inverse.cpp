@@ -61,11 +61,11 @@ void require_uniform_temperature(const rod::RodModel& m, int i) {
           "of the adjusted actuators");
 }
 
-double get_variable(const rod::RodModel& m, const Actuation& a, int i) {
+double get_variable(const rod::RodModel& m, const rod::Loads& a, int i) {
   return is_tca(m, i) ? a.actuators[i].segments.front().temperature_K : a.actuators[i].tension_N;
 }
 
-void set_variable(const rod::RodModel& m, Actuation& a, int i, double v) {
+void set_variable(const rod::RodModel& m, rod::Loads& a, int i, double v) {
   if (is_tca(m, i)) {
     a.set_temperature_K(static_cast<std::size_t>(i), v);
   } else {
@@ -92,7 +92,7 @@ Eigen::Matrix<double, 6, 1> pose_difference(const Eigen::VectorXd& ya, const Eig
 /// d phi / dT of actuator i's TCA row (tca::contact_residual, the TCA law with coil contact)
 /// at tension T and elongation delta for a uniform shift of its segment temperatures [N/K]:
 /// -dF/dT while the coils are open, 0 while they are closed.
-double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double tension_N,
+double tca_dphi_dT(const rod::RodModel& m, const rod::Loads& a, int i, double tension_N,
                    double delta_m) {
   return tca::contact_residual(*m.actuators[i].drive.tca, tension_N, delta_m,
                                a.actuators[i].segments)
@@ -104,7 +104,7 @@ double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double ten
 /// onset, where the coils open under that force (Tca::onset_temperature). Returns the
 /// temperature just above that onset (the same state, now with a temperature sensitivity) if
 /// it lies below t_hi_K; none for an open TCA, a tension drive or an onset out of range.
-std::optional<double> opening_temperature(const rod::RodModel& m, const Actuation& a, int i,
+std::optional<double> opening_temperature(const rod::RodModel& m, const rod::Loads& a, int i,
                                           const Solution& solution, double t_hi_K) {
   if (!is_tca(m, i)) return std::nullopt;
   const tca::Tca& tca = *m.actuators[i].drive.tca;
@@ -146,7 +146,7 @@ double blocked_normal_force_N(ShootingSolver& constrained_solver, const rod::Rod
                               double t_K, Solution& solution) {
   require(model.tip_constraint && model.tip_constraint->normal_W, "tip_constraint.normal",
           "(missing)", "a blocked-tip normal force needs a tip_constraint with a normal");
-  Actuation a = Actuation::from_model(model);
+  rod::Loads a = rod::Loads::from_model(model);
   for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
     if (is_tca(model, i)) a.set_temperature_K(static_cast<std::size_t>(i), t_K);
   }
@@ -213,7 +213,7 @@ GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_opti
   rod::RodModel free = model;
   free.tip_constraint.reset();
   ShootingSolver fs(free, shooting_options);
-  Actuation a = Actuation::from_model(free);
+  rod::Loads a = rod::Loads::from_model(free);
   const Vec3 applied = a.tip_force_W_N;
   double T = t_lo, f = 0.0;
   a.set_temperature_K(static_cast<std::size_t>(act), T);

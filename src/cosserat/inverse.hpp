@@ -47,9 +47,10 @@ struct TipDerivatives {
 /// the converged `solution` of `actuation`. `variables` are actuator indices (model order).
 /// The model must have no tip constraint (J and C describe a free tip). Returns false if an
 /// IVP failed or B_u is singular.
-bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const Actuation& actuation,
-                     const Solution& solution, const std::vector<int>& variables,
-                     TipDerivativeMethod method, TipDerivatives& out);
+bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
+                     const rod::Loads& actuation, const Solution& solution,
+                     const std::vector<int>& variables, TipDerivativeMethod method,
+                     TipDerivatives& out);
 
 /// Lower and upper bound of each actuation variable: a TCA from its material's reference
 /// (ambient) temperature to the smaller of its valid-range maximum and `max_temperature_K`
@@ -106,7 +107,7 @@ const char* to_string(InverseResult::Status s);
 /// and `solution` (warm start if valid); on return both hold the final point.
 InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
                             const Eigen::Vector3d& target_W_m, const InverseOptions& options,
-                            Actuation& actuation, Solution& solution);
+                            rod::Loads& actuation, Solution& solution);
 
 /// Grasp problem: one finger of an n-finger gripper, tip held by the object along the
 /// model's tip_constraint normal (pointing from the finger toward the object).

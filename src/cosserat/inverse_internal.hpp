@@ -22,10 +22,10 @@ int unknown_index(const rod::RodModel& m, int i);
 void require_uniform_temperature(const rod::RodModel& m, int i);
 
 /// The adjusted variable of actuator i: its temperature [K] (TCA) or tension [N].
-double get_variable(const rod::RodModel& m, const Actuation& a, int i);
+double get_variable(const rod::RodModel& m, const rod::Loads& a, int i);
 
 /// Sets the adjusted variable of actuator i (see get_variable).
-void set_variable(const rod::RodModel& m, Actuation& a, int i, double v);
+void set_variable(const rod::RodModel& m, rod::Loads& a, int i, double v);
 
 /// R of a shooting state y.
 Mat3 rotation_of(const Eigen::VectorXd& y);
@@ -40,7 +40,7 @@ Eigen::Matrix<double, 6, 1> pose_difference(const Eigen::VectorXd& ya, const Eig
 /// d phi / dT of actuator i's TCA row (tca::contact_residual, the TCA law with coil contact)
 /// at tension T and elongation delta for a uniform shift of its segment temperatures [N/K]:
 /// -dF/dT while the coils are open, 0 while they are closed.
-double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double tension_N,
+double tca_dphi_dT(const rod::RodModel& m, const rod::Loads& a, int i, double tension_N,
                    double delta_m);
 
 /// A TCA whose coils are all closed in the solved state (tension x[u]) carries whatever
@@ -48,7 +48,7 @@ double tca_dphi_dT(const rod::RodModel& m, const Actuation& a, int i, double ten
 /// onset, where the coils open under that force (Tca::onset_temperature). Returns the
 /// temperature just above that onset (the same state, now with a temperature sensitivity) if
 /// it lies below t_hi_K; none for an open TCA, a tension drive or an onset out of range.
-std::optional<double> opening_temperature(const rod::RodModel& m, const Actuation& a, int i,
+std::optional<double> opening_temperature(const rod::RodModel& m, const rod::Loads& a, int i,
                                           const Solution& solution, double t_hi_K);
 
 /// Scale of actuator i's variable v for steps and trust regions: max(|v|, 300 K) or max(|v|, F_c).

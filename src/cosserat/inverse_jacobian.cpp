@@ -27,9 +27,10 @@ using state_layout::kR;
 
 }  // namespace
 
-bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const Actuation& actuation,
-                     const Solution& solution, const std::vector<int>& variables,
-                     TipDerivativeMethod method, TipDerivatives& out) {
+bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
+                     const rod::Loads& actuation, const Solution& solution,
+                     const std::vector<int>& variables, TipDerivativeMethod method,
+                     TipDerivatives& out) {
   require(!model.tip_constraint, "model.tip_constraint", "(set)",
           "must be absent: J and C describe a free tip");
   const int nx = solver.unknown_count();
@@ -69,7 +70,7 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const A
         continue;
       }
       // A tension drive enters the IVP: central differences (two IVPs).
-      Actuation a = actuation;
+      rod::Loads a = actuation;
       const double v = get_variable(model, actuation, i);
       const double h = fd::kCentralRelativeStep * variable_scale(model, i, v, Fc);
       set_variable(model, a, i, v + h);
@@ -144,7 +145,7 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const A
       const int i = variables[k];
       const double v = get_variable(model, actuation, i);
       const double h = step * variable_scale(model, i, v, Fc);
-      Actuation a = actuation;
+      rod::Loads a = actuation;
       auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {
         set_variable(model, a, i, v + hh);
         return solver.residual_and_tip_state(a, x, r, y);
@@ -156,7 +157,7 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model, const A
     }
     // E_W, B_W: perturbed tip wrench.
     for (int c = 0; c < 6; ++c) {
-      Actuation a = actuation;
+      rod::Loads a = actuation;
       const double w0 = c < 3 ? actuation.tip_force_W_N[c] : actuation.tip_moment_W_Nm[c - 3];
       const double h = step * std::max(std::abs(w0), c < 3 ? Fc : Fc * L);
       auto eval = [&](double hh, Eigen::VectorXd& r, Eigen::VectorXd& y) {

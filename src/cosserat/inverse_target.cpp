@@ -96,7 +96,7 @@ Eigen::VectorXd bounded_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& e,
 
 InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
                             const Eigen::Vector3d& target_W_m, const InverseOptions& options,
-                            Actuation& actuation, Solution& solution) {
+                            rod::Loads& actuation, Solution& solution) {
   require(target_W_m.allFinite(), "target", target_W_m.norm(), "must be finite");
   require(options.tolerance_m > 0.0, "options.tolerance_m", options.tolerance_m, "must be > 0");
   require(options.max_iterations >= 1, "options.max_iterations", options.max_iterations,
@@ -247,7 +247,7 @@ InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
       if (size <= kNilStep) break;
       const bool truncated = size > radius;
       if (truncated) dq *= radius / size;  // stays in the box (q and q + dq are inside)
-      Actuation at = actuation;
+      rod::Loads at = actuation;
       for (int k = 0; k < nq; ++k) set_variable(model, at, vars[k], q[k] + dq[k]);
       Solution st = solution;
       // First-order warm start du = -B_u^-1 B_q dq (the coarse level restarts).

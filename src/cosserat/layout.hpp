@@ -40,7 +40,7 @@ class Layout {
   /// Whether this layout is a reduction of the 3-D one (Summary::planar).
   virtual bool reduced() const = 0;
   /// Whether this layout solves `act` from `start` (3-D unknowns; a warm start when valid).
-  virtual bool admits(const Actuation& act, const Solution& start) const = 0;
+  virtual bool admits(const rod::Loads& act, const Solution& start) const = 0;
 
   /// Installs p.rhs and, with `sensitivities`, p.rhs_sens (RodRhs); they read the IVP
   /// parameters of p (and of this layout), which must outlive them.
@@ -52,12 +52,12 @@ class Layout {
                              Eigen::VectorXd& y0) const = 0;
   /// The scaled residual's rows other than the TCA rows (tip wrench, tip constraint) at
   /// unknowns x with y(L) = yL, p's IVP parameters set for x (TipConditions::tip_residual).
-  virtual void tip_rows(const TipConditions& p, const Actuation& act, double lambda,
+  virtual void tip_rows(const TipConditions& p, const rod::Loads& act, double lambda,
                         const Eigen::VectorXd& x, const Eigen::VectorXd& yL,
                         Eigen::VectorXd& r) const = 0;
   /// The same rows of dr/dx (J is nx x nx) from y(L) = y and the augmented state Y(L)
   /// (TipConditions::tip_jacobian).
-  virtual void tip_rows_jacobian(const TipConditions& p, const Actuation& act, double lambda,
+  virtual void tip_rows_jacobian(const TipConditions& p, const rod::Loads& act, double lambda,
                                  const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                                  const Eigen::VectorXd& Y, Eigen::MatrixXd& J) const = 0;
 

@@ -14,7 +14,7 @@ class Layout3d final : public Layout {
  public:
   LayoutDims dims() const override { return {6, kNu, kDelta}; }
   bool reduced() const override { return false; }
-  bool admits(const Actuation&, const Solution&) const override { return true; }
+  bool admits(const rod::Loads&, const Solution&) const override { return true; }
 
   void bind(RodRhs& p, bool sensitivities) override {
     RodRhs* q = &p;
@@ -40,7 +40,7 @@ class Layout3d final : public Layout {
   }
 
   // docs/conventions.md "Tip conditions" (body frame), scaled.
-  void tip_rows(const TipConditions& p, const Actuation& act, double lambda,
+  void tip_rows(const TipConditions& p, const rod::Loads& act, double lambda,
                 const Eigen::VectorXd& x, const Eigen::VectorXd& yL,
                 Eigen::VectorXd& r) const override {
     const rod::RodModel& model = p.model;
@@ -69,7 +69,7 @@ class Layout3d final : public Layout {
     if (p.n_con == 1) r[p.k_con] = p.con_normal_W.dot(yL.segment<3>(kP) - p.con_target_W) / p.L;
   }
 
-  void tip_rows_jacobian(const TipConditions& p, const Actuation& act, double lambda,
+  void tip_rows_jacobian(const TipConditions& p, const rod::Loads& act, double lambda,
                          const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& Y, Eigen::MatrixXd& J) const override {
     // Chain rule through the tip conditions: dr = (dr/dy) Y(L) + dr/dT.

@@ -31,7 +31,7 @@ constexpr double kCentralStep = 6.0554544523933395e-06;  // eps^(1/3)
 
 }  // namespace
 
-Summary::Status ShootingSolver::Impl::newton(const Actuation& act, double lambda,
+Summary::Status ShootingSolver::Impl::newton(const rod::Loads& act, double lambda,
                                              Eigen::VectorXd& x, Eigen::MatrixXd& J,
                                              Summary& summary, std::string& why, double tolerance) {
   Eigen::VectorXd r(nx), xt(nx), rt(nx), dx(nx);
@@ -115,7 +115,7 @@ Summary::Status ShootingSolver::Impl::newton(const Actuation& act, double lambda
   }
 }
 
-bool ShootingSolver::Impl::newton_jacobian(const Actuation& act, double lambda,
+bool ShootingSolver::Impl::newton_jacobian(const rod::Loads& act, double lambda,
                                            const Eigen::VectorXd& x, Eigen::VectorXd& r,
                                            Eigen::MatrixXd& J, bool& approximate) {
   approximate = false;
@@ -144,7 +144,7 @@ Eigen::VectorXd ShootingSolver::Impl::typical_scale() const {
   return t;
 }
 
-bool ShootingSolver::Impl::fd_jacobian(const Actuation& act, double lambda,
+bool ShootingSolver::Impl::fd_jacobian(const rod::Loads& act, double lambda,
                                        const Eigen::VectorXd& x, const Eigen::VectorXd& r0,
                                        Eigen::MatrixXd& J) {
   J.resize(nx, nx);
@@ -176,7 +176,7 @@ bool ShootingSolver::Impl::fd_jacobian(const Actuation& act, double lambda,
   return J.allFinite();
 }
 
-Summary::Status ShootingSolver::Impl::continuation(const Actuation& act, Eigen::VectorXd& x,
+Summary::Status ShootingSolver::Impl::continuation(const rod::Loads& act, Eigen::VectorXd& x,
                                                    Eigen::MatrixXd& J, Summary& summary,
                                                    std::string& why) {
   const std::string direct_why = why;

@@ -22,7 +22,7 @@ class PlanarLayout final : public Layout {
   /// Loads that keep the model in its plane (gravity and tip force without a component
   /// along R_WB0 e_y, the tip moment along it only; exact tests) and, for a warm start,
   /// in-plane unknowns (a 3-D equilibrium that left the plane stays a 3-D problem).
-  bool admits(const Actuation& act, const Solution& start) const override {
+  bool admits(const rod::Loads& act, const Solution& start) const override {
     const Mat3& R0 = model_.R_WB0;
     const bool planar_loads =
         R0.col(1).dot(act.gravity_W_m_s2) == 0.0 && R0.col(1).dot(act.tip_force_W_N) == 0.0 &&
@@ -70,8 +70,9 @@ class PlanarLayout final : public Layout {
   }
 
   /// The in-plane rows (force x, z; moment y) of the 3-D residual; the others are zero.
-  void tip_rows(const TipConditions& p, const Actuation& act, double lambda, const Eigen::VectorXd&,
-                const Eigen::VectorXd& yL, Eigen::VectorXd& r) const override {
+  void tip_rows(const TipConditions& p, const rod::Loads& act, double lambda,
+                const Eigen::VectorXd&, const Eigen::VectorXd& yL,
+                Eigen::VectorXd& r) const override {
     const Vec3 F_B0 =
         model_.R_WB0.transpose() * (lambda * rod::tip_force_with_weight_W_N(model_, act));
     const double M_y = model_.R_WB0.col(1).dot(lambda * act.tip_moment_W_Nm);
@@ -83,7 +84,7 @@ class PlanarLayout final : public Layout {
   }
 
   /// The tip wrench rows by planar::tip_wrench_sens.
-  void tip_rows_jacobian(const TipConditions& p, const Actuation& act, double lambda,
+  void tip_rows_jacobian(const TipConditions& p, const rod::Loads& act, double lambda,
                          const Eigen::VectorXd&, const Eigen::VectorXd&, const Eigen::VectorXd& Y,
                          Eigen::MatrixXd& J) const override {
     const Vec3 F_B0 =

@@ -373,7 +373,7 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   return Y.allFinite();
 }
 
-void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x) {
+void RodRhs::set_parameters(const rod::Loads& act, double lambda, const Eigen::VectorXd& x) {
   for (int i = 0; i < n_act; ++i) {
     const int k = unknown_of[i];
     const double T = k >= 0 ? x[k] : lambda * act.actuators[i].tension_N;

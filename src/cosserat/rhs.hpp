@@ -33,7 +33,7 @@ struct RodRhs : RodProblem {
   /// of the linear system M z = b is dz = M^-1 (db - dM z), with the same LU as z.
   void eval_rhs_sens(double s, const Eigen::VectorXd& Ya, Eigen::VectorXd& dY) const;
   /// Sets cT and f_ext for load fraction lambda and unknowns x; fills scaled segments.
-  void set_parameters(const Actuation& act, double lambda, const Eigen::VectorXd& x);
+  void set_parameters(const rod::Loads& act, double lambda, const Eigen::VectorXd& x);
   /// y(0) for unknowns x (the layout's state and unknowns).
   void initial_state(const Eigen::VectorXd& x, Eigen::VectorXd& y0) const {
     layout->initial_state(*this, x, y0);

@@ -106,7 +106,7 @@ Options ShootingSolver::Impl::with_jacobian_fallback(Options o, int n_unknowns) 
   return o;
 }
 
-Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
+Summary ShootingSolver::Impl::solve(const rod::Loads& act, Solution& sol) {
   if (sol.valid && sol.unknowns.allFinite()) layout->reduce_unknowns(sol.unknowns);
   Summary summary = solve_in_layout(act, sol);
   summary.planar = layout->reduced();
@@ -120,7 +120,7 @@ Summary ShootingSolver::Impl::solve(const Actuation& act, Solution& sol) {
   return summary;
 }
 
-Summary ShootingSolver::Impl::solve_in_layout(const Actuation& act, Solution& sol) {
+Summary ShootingSolver::Impl::solve_in_layout(const rod::Loads& act, Solution& sol) {
   const auto t0 = std::chrono::steady_clock::now();
   Summary summary;
   ivp_count = 0;
@@ -227,7 +227,7 @@ double ShootingSolver::Impl::equilibrium_residual(const Eigen::VectorXd& r,
   return force / characteristic_force_N;
 }
 
-void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol,
+void ShootingSolver::Impl::finish(const rod::Loads& act, const Eigen::VectorXd& x, Solution& sol,
                                   Summary& summary) {
   Eigen::VectorXd r;
   summary.characteristic_force_N = rod::characteristic_force_N(model, act);
@@ -254,7 +254,7 @@ void ShootingSolver::Impl::finish(const Actuation& act, const Eigen::VectorXd& x
   }
 }
 
-rod::Result ShootingSolver::Impl::make_result(const Actuation& act, const Solution& sol,
+rod::Result ShootingSolver::Impl::make_result(const rod::Loads& act, const Solution& sol,
                                               const Summary& summary) {
   rod::Result res;
   res.scenario = model.name;
@@ -392,7 +392,7 @@ ShootingSolver::ShootingSolver(const rod::RodModel& model, const Options& option
 ShootingSolver::~ShootingSolver() = default;
 ShootingSolver::ShootingSolver(ShootingSolver&&) noexcept = default;
 
-Summary ShootingSolver::solve(const Actuation& actuation, Solution& solution) {
+Summary ShootingSolver::solve(const rod::Loads& actuation, Solution& solution) {
   if (actuation.load_scale != 1.0) return solve(actuation.applied(impl_->model), solution);
   // The reduced layout (the planar reduction) solves what it admits, the 3-D one the rest.
   Impl& solver = reduced_ && reduced_->layout->admits(actuation, solution) ? *reduced_ : *impl_;
@@ -404,7 +404,7 @@ namespace {
 /// Whether the planar reduction's IVP from `sol` is the 3-D one restricted to the plane: the
 /// loads stay in the plane and the 3-D unknowns lie in it (their out-of-plane components are
 /// zero, so reducing and embedding them gives them back).
-bool in_plane(const internal::Layout& planar, const Actuation& act, const Solution& sol) {
+bool in_plane(const internal::Layout& planar, const rod::Loads& act, const Solution& sol) {
   if (!planar.admits(act, sol)) return false;
   Eigen::VectorXd x = sol.unknowns;
   planar.reduce_unknowns(x);
@@ -415,7 +415,7 @@ bool in_plane(const internal::Layout& planar, const Actuation& act, const Soluti
 
 }  // namespace
 
-rod::Result ShootingSolver::make_result(const Actuation& actuation, const Solution& solution,
+rod::Result ShootingSolver::make_result(const rod::Loads& actuation, const Solution& solution,
                                         const Summary& summary) {
   if (actuation.load_scale != 1.0) {
     return make_result(actuation.applied(impl_->model), solution, summary);
@@ -432,16 +432,16 @@ rod::Result ShootingSolver::make_result(const Actuation& actuation, const Soluti
   return res;
 }
 
-Eigen::VectorXd ShootingSolver::initial_guess(const Actuation& actuation) {
+Eigen::VectorXd ShootingSolver::initial_guess(const rod::Loads& actuation) {
   return impl_->initial_guess(actuation, 1.0, true);
 }
 
-bool ShootingSolver::residual(const Actuation& actuation, const Eigen::VectorXd& x,
+bool ShootingSolver::residual(const rod::Loads& actuation, const Eigen::VectorXd& x,
                               Eigen::VectorXd& r) {
   return impl_->residual(actuation, 1.0, x, r);
 }
 
-bool ShootingSolver::jacobian(const Actuation& actuation, const Eigen::VectorXd& x,
+bool ShootingSolver::jacobian(const rod::Loads& actuation, const Eigen::VectorXd& x,
                               Eigen::MatrixXd& J) {
   Eigen::VectorXd r0;
   if (impl_->options.jacobian == JacobianMethod::kSensitivity) {
@@ -451,14 +451,14 @@ bool ShootingSolver::jacobian(const Actuation& actuation, const Eigen::VectorXd&
   return impl_->fd_jacobian(actuation, 1.0, x, r0, J);
 }
 
-bool ShootingSolver::residual_and_tip_state(const Actuation& actuation, const Eigen::VectorXd& x,
+bool ShootingSolver::residual_and_tip_state(const rod::Loads& actuation, const Eigen::VectorXd& x,
                                             Eigen::VectorXd& r, Eigen::VectorXd& tip_state) {
   if (!impl_->residual(actuation, 1.0, x, r)) return false;
   tip_state = impl_->y;
   return true;
 }
 
-bool ShootingSolver::tip_sensitivities(const Actuation& actuation, const Eigen::VectorXd& x,
+bool ShootingSolver::tip_sensitivities(const rod::Loads& actuation, const Eigen::VectorXd& x,
                                        Eigen::VectorXd& r, Eigen::MatrixXd& J,
                                        Eigen::VectorXd& tip_state, Eigen::MatrixXd& dtip_dx) {
   if (impl_->options.jacobian != JacobianMethod::kSensitivity) return false;
@@ -477,7 +477,7 @@ const Options& ShootingSolver::options() const { return impl_->options; }
 
 rod::Result solve(const rod::RodModel& model, const Options& options) {
   ShootingSolver solver(model, options);
-  const Actuation act = Actuation::from_model(model);
+  const rod::Loads act = rod::Loads::from_model(model);
   Solution sol;
   const Summary summary = solver.solve(act, sol);
   return solver.make_result(act, sol, summary);

@@ -59,10 +59,6 @@ inline constexpr int kC = 18;      ///< int_0^s p_W ds, 3
 inline constexpr int kDelta = 21;  ///< delta_i, one per actuator
 }  // namespace state_layout
 
-/// The loads of a solve (rod/loads.hpp); the shooting solver's historical names.
-using ActuatorDrive = rod::ActuatorLoad;
-using Actuation = rod::Loads;
-
 /// How the shooting Jacobian dr/dx is obtained.
 enum class JacobianMethod {
   /// Forward sensitivities dy/dx integrated with the state (variational equations, one
@@ -223,8 +219,8 @@ class ShootingSolver {
   ShootingSolver(const ShootingSolver&) = delete;
   ShootingSolver& operator=(const ShootingSolver&) = delete;
 
-  /// Solves the BVP for `actuation`. If `solution.valid`, starts from it (warm start,
-  /// reusing its Jacobian; when the actuation, as the flat vector (per actuator: tension,
+  /// Solves the BVP for `loads`. If `solution.valid`, starts from it (warm start,
+  /// reusing its Jacobian; when the loads, as the flat vector (per actuator: tension,
   /// then each segment's fraction and temperature; tip force, tip moment, gravity), lies on
   /// the straight line through the last points of `solution.path`, from the polynomial
   /// extrapolation of the unknowns along it with a fresh coarse-level Jacobian, falling back
@@ -234,13 +230,13 @@ class ShootingSolver {
   /// (tensions, tip wrench, gravity scaled by lambda; temperatures T_ref + lambda (T - T_ref))
   /// warm-starting each step, doubling the step after a success and halving it after a
   /// failure. On return `solution` holds the last accepted (finite) point. A load_scale
-  /// other than 1 solves actuation.applied(model) (rod/loads.hpp); so does make_result. The
+  /// other than 1 solves loads.applied(model) (rod/loads.hpp); so does make_result. The
   /// evaluation functions below (initial_guess, residual, ...) ignore load_scale.
-  Summary solve(const Actuation& actuation, Solution& solution);
+  Summary solve(const rod::Loads& loads, Solution& solution);
 
   /// Integrates the solution once more with output and fills a result (tip pose,
   /// actuators, centerline samples, bending radius, summary fields, discretization).
-  rod::Result make_result(const Actuation& actuation, const Solution& solution,
+  rod::Result make_result(const rod::Loads& loads, const Solution& solution,
                           const Summary& summary);
 
   /// The unknowns a cold solve starts from (docs/conventions.md "Initial guess"): the
@@ -248,21 +244,21 @@ class ShootingSolver {
   /// their closed-form elongations, bent further by gravity (a fixed point on a
   /// constant-strain arc; ignored if that does not converge); tip loads and reactions are
   /// not included (reactions 0).
-  Eigen::VectorXd initial_guess(const Actuation& actuation);
+  Eigen::VectorXd initial_guess(const rod::Loads& loads);
 
   /// Scaled residual at x (for tests); returns false if the IVP or a TCA law failed.
-  bool residual(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  bool residual(const rod::Loads& loads, const Eigen::VectorXd& x, Eigen::VectorXd& r);
   /// Jacobian of the scaled residual at x by Options::jacobian (for tests); false on failure.
-  bool jacobian(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
+  bool jacobian(const rod::Loads& loads, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
 
   /// Scaled residual at x and the IVP end state y(L) (layout above); false on failure.
-  bool residual_and_tip_state(const Actuation& actuation, const Eigen::VectorXd& x,
-                              Eigen::VectorXd& r, Eigen::VectorXd& tip_state);
+  bool residual_and_tip_state(const rod::Loads& loads, const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                              Eigen::VectorXd& tip_state);
   /// One augmented IVP at x: scaled residual r, its exact Jacobian J = dr/dx, y(L) and the
   /// forward sensitivities dy(L)/dx (state_dimension() x unknown_count()). Returns false
   /// when Options::jacobian is not kSensitivity (or it fell back to differences) or the IVP
   /// failed.
-  bool tip_sensitivities(const Actuation& actuation, const Eigen::VectorXd& x, Eigen::VectorXd& r,
+  bool tip_sensitivities(const rod::Loads& loads, const Eigen::VectorXd& x, Eigen::VectorXd& r,
                          Eigen::MatrixXd& J, Eigen::VectorXd& tip_state, Eigen::MatrixXd& dtip_dx);
   /// IVP state dimension (21 + actuators).
   int state_dimension() const;
@@ -278,7 +274,7 @@ class ShootingSolver {
   std::unique_ptr<Impl> reduced_;  ///< the planar reduction's solver (planar models only)
 };
 
-/// Convenience: solves the model's own actuation and returns the result.
+/// Convenience: solves the model's own loads and returns the result.
 rod::Result solve(const rod::RodModel& model, const Options& options);
 
 }  // namespace tcasim::cosserat

@@ -49,16 +49,16 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// ShootingSolver::solve in this Impl's layout: sol's unknowns and tip state are 3-D on
   /// entry and on return (the Jacobians, the coarse-level fields and the path stay in the
   /// layout's unknowns); the global equilibrium is checked on the 3-D solution.
-  Summary solve(const Actuation& act, Solution& sol);
+  Summary solve(const rod::Loads& act, Solution& sol);
   /// solve() with sol's unknowns and tip state in the layout's.
-  Summary solve_in_layout(const Actuation& act, Solution& sol);
+  Summary solve_in_layout(const rod::Loads& act, Solution& sol);
   /// Sets sol's unknowns, tensions, elongations and tip state at x (full load), and leaves
   /// the IVP parameters set for x at full load.
   /// Summary::equilibrium_residual of the scaled residual r at full load, with F_c of the
   /// solve's loads (rod::characteristic_force_N, computed once per solve by finish()).
   double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
-  void finish(const Actuation& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
-  rod::Result make_result(const Actuation& act, const Solution& sol, const Summary& summary);
+  void finish(const rod::Loads& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
+  rod::Result make_result(const rod::Loads& act, const Solution& sol, const Summary& summary);
   /// Fills res.probes after make_result's sampling pass: a probe at a sample from it, any other
   /// from the sample before its s integrated on to s (output_level->integrate_between).
   /// False when such an integration fails.
@@ -66,9 +66,9 @@ struct ShootingSolver::Impl : internal::TipConditions {
 
   // --- the shooting map r(x) (shooting_map.cpp)
   /// Scaled residual at x; y(L) left in `y`. False when the IVP or a TCA law fails.
-  bool residual(const Actuation& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  bool residual(const rod::Loads& act, double lambda, const Eigen::VectorXd& x, Eigen::VectorXd& r);
   /// Residual and its exact Jacobian from one augmented IVP (kSensitivity).
-  bool residual_and_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+  bool residual_and_jacobian(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                              Eigen::VectorXd& r, Eigen::MatrixXd& J);
   /// Whether the memo holds y(L) of the IVP from x with the parameters last set
   /// (set_parameters) on level `on` (the active level unless given).
@@ -83,24 +83,24 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// cost one plain IVP) unless the step reduced ||r|| by less than kBroydenMinReduction
   /// (then it is recomputed at the new point); a stale Jacobian gets kStaleLineSearchSteps
   /// halvings before it is recomputed. x and J are in/out (J.size() == 0: no Jacobian yet).
-  Summary::Status newton(const Actuation& act, double lambda, Eigen::VectorXd& x,
+  Summary::Status newton(const rod::Loads& act, double lambda, Eigen::VectorXd& x,
                          Eigen::MatrixXd& J, Summary& summary, std::string& why, double tolerance);
   /// Sensitivity Jacobian for Newton at x (r: the residual at x, kept). On the fine level
   /// with a coarse level (Options::coarse_steps), the first request at a point uses the coarse
   /// level's sensitivities (coarse_steps / steps of the cost; within the coarse discretization
   /// error of the fine Jacobian) and sets `approximate`; a second request at the same point
   /// (the approximate one failed) computes the fine Jacobian.
-  bool newton_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+  bool newton_jacobian(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                        Eigen::VectorXd& r, Eigen::MatrixXd& J, bool& approximate);
   /// Forward or central differences of the residual (Options::jacobian), r0 = r(x).
-  bool fd_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+  bool fd_jacobian(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                    const Eigen::VectorXd& r0, Eigen::MatrixXd& J);
   /// Typical sizes of the unknowns (floor of the finite-difference steps).
   Eigen::VectorXd typical_scale() const;
   /// Continuation in the load fraction lambda from 0 to 1 after a failed direct solve (why:
   /// its reason on entry, the outcome's on return), warm-starting each step on the fine
   /// level; on return x, J are the last accepted point and its Jacobian (empty on failure).
-  Summary::Status continuation(const Actuation& act, Eigen::VectorXd& x, Eigen::MatrixXd& J,
+  Summary::Status continuation(const rod::Loads& act, Eigen::VectorXd& x, Eigen::MatrixXd& J,
                                Summary& summary, std::string& why);
 
   // --- warm starts and the multi-level start (warm_start.cpp)
@@ -108,7 +108,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// guess, J empty or a warm start's Jacobian for the coarse level) with the two-level start
   /// (Options::coarse_steps); on return x and J are the last accepted point and its Jacobian, and
   /// sol's coarse fields are set.
-  Summary::Status direct_solve(const Actuation& act, Solution& sol, bool warm, Eigen::VectorXd& x,
+  Summary::Status direct_solve(const rod::Loads& act, Solution& sol, bool warm, Eigen::VectorXd& x,
                                Eigen::MatrixXd& J, Summary& summary, std::string& why);
   /// The cost check of a warm start that would go straight to the fine level (a coarse level,
   /// a Jacobian J, Options::warm_start_fine_only), decided on the coarse level before any fine
@@ -123,7 +123,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// Returns false (with x_cold the guess, loaded_guess as initial_guess sets it, and the
   /// memo at the guess on the coarse level) when the cold path should run; costs one coarse
   /// IVP, or two and the guess when the warm point is that far.
-  bool warm_start_pays(const Actuation& act, const Solution& sol, const Eigen::MatrixXd& J,
+  bool warm_start_pays(const rod::Loads& act, const Solution& sol, const Eigen::MatrixXd& J,
                        Eigen::VectorXd& x_cold, bool& loaded_guess);
   /// Cold start: converges the middle level (2 N_c steps) from the coarse solution xc and
   /// starts the fine level (N_f steps) at the Richardson extrapolation of the two, which
@@ -131,7 +131,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// error of x:
   ///   x(N) = x* + C N^-p  =>  x(N_f) = x_m + (x_m - x_c) (N_f^-p - N_m^-p) / (N_m^-p - N_c^-p).
   /// On failure x, J keep the coarse solution.
-  void cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,
+  void cold_extrapolation(const rod::Loads& act, const Eigen::VectorXd& xc,
                           const Eigen::MatrixXd& Jc, Eigen::VectorXd& x, Eigen::MatrixXd& J,
                           Summary& summary);
   /// Warm start: the actuation change (temperatures) alters the TCA rows of the Jacobian
@@ -139,7 +139,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// temperatures). Row k is (a e_k + b ddelta/dx) / F_c with a = dphi/dT_k, b = dphi/d delta,
   /// so it is rebuilt from the previous solution's (a, b) and the new ones at the same point
   /// under `act` (the residual there comes from the IVP memo, without integration).
-  void refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
+  void refresh_tca_rows(const rod::Loads& act, const Eigen::VectorXd& x, Eigen::MatrixXd& J);
   /// Cold start of a body whose reference curvature varies along s under a distributed load
   /// (the guess, a constant-strain arc, knows neither the variation nor, for a heavy soft
   /// body, the weight): a homotopy in omega*'s variation (RodProblem::set_omega_star_fraction).
@@ -149,10 +149,10 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// Options::min_continuation_step). Returns kConverged with x, J, sol's coarse fields at the
   /// model (mu = 1); otherwise the status of the failed stage (the caller then runs the
   /// ordinary cold start) with mu back at 1.
-  Summary::Status omega_star_homotopy(const Actuation& act, Solution& sol, Eigen::VectorXd& x,
+  Summary::Status omega_star_homotopy(const rod::Loads& act, Solution& sol, Eigen::VectorXd& x,
                                       Eigen::MatrixXd& J, Summary& summary, std::string& why);
   /// The actuation as a flat vector (documented at ShootingSolver::solve).
-  static Eigen::VectorXd actuation_vector(const Actuation& act);
+  static Eigen::VectorXd actuation_vector(const rod::Loads& act);
   /// Extrapolates the unknowns to the actuation a along Solution::path: the newest points
   /// whose actuations lie on the line through the last one and a, with parameter t (0 at
   /// the last point, 1 at a), each older point at least kPathMinSpacing behind the next (no
@@ -173,7 +173,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// fixed point gravity is ignored; *used_gravity tells whether it was included. Tip loads
   /// are ignored (large ones, e.g. a holder's reaction, admit other equilibria). Computed in
   /// the 3-D unknowns and returned in the layout's (Layout::reduce_unknowns).
-  Eigen::VectorXd initial_guess(const Actuation& act, double lambda, bool with_gravity,
+  Eigen::VectorXd initial_guess(const rod::Loads& act, double lambda, bool with_gravity,
                                 bool* used_gravity = nullptr);
   /// TCA tensions of the guess (rod::solve_guess_tensions): T_k = F_tca(delta_k(T)) with
   /// delta_k of the closed-form strains plus `extra` (the mean load strains); sets the TCA

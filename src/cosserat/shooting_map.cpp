@@ -6,7 +6,7 @@ namespace tcasim::cosserat {
 
 using namespace stage_names;
 
-bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+bool ShootingSolver::Impl::residual(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                                     Eigen::VectorXd& r) {
   if (!all_finite(x)) return false;
   set_parameters(act, lambda, x);
@@ -28,7 +28,7 @@ bool ShootingSolver::Impl::residual(const Actuation& act, double lambda, const E
   return tip_residual(act, lambda, x, y, r);
 }
 
-bool ShootingSolver::Impl::residual_and_jacobian(const Actuation& act, double lambda,
+bool ShootingSolver::Impl::residual_and_jacobian(const rod::Loads& act, double lambda,
                                                  const Eigen::VectorXd& x, Eigen::VectorXd& r,
                                                  Eigen::MatrixXd& J) {
   if (!all_finite(x)) return false;

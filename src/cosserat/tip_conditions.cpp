@@ -23,7 +23,7 @@ TipConditions::TipConditions(const rod::RodModel& m, std::unique_ptr<Layout> l, 
 }
 
 // docs/conventions.md "Tip conditions" (body frame), scaled.
-bool TipConditions::tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+bool TipConditions::tip_residual(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                                  const Eigen::VectorXd& yL, Eigen::VectorXd& r) {
   r.resize(nx);
   layout->tip_rows(*this, act, lambda, x, yL, r);
@@ -48,7 +48,7 @@ bool TipConditions::tca_rows(const Eigen::VectorXd& x, const Eigen::VectorXd& yL
   return all_finite(r);
 }
 
-bool TipConditions::tip_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+bool TipConditions::tip_jacobian(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                                  const Eigen::VectorXd& y, const Eigen::VectorXd& Y,
                                  Eigen::MatrixXd& J) const {
   J.resize(nx, nx);
@@ -71,7 +71,7 @@ Vec3 TipConditions::reaction_W(const Eigen::VectorXd& x) const {
   return Vec3::Zero();
 }
 
-void TipConditions::equilibrium(const Actuation& act, const Eigen::VectorXd& x,
+void TipConditions::equilibrium(const rod::Loads& act, const Eigen::VectorXd& x,
                                 const Eigen::VectorXd& yL, Summary& summary) const {
   const Mat3& R0 = model.R_WB0;
   const Vec3 p0 = model.base_position_W_m;

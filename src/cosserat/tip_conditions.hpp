@@ -20,7 +20,7 @@ struct TipConditions : RodRhs {
   /// Scaled residual r (size nx) at unknowns x with y(L) = yL; cT and the scaled segments
   /// set for x (RodRhs::set_parameters): the layout's tip rows (Layout::tip_rows) and the
   /// TCA rows. False when a TCA law fails or r is not finite.
-  bool tip_residual(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+  bool tip_residual(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& yL, Eigen::VectorXd& r);
   /// TCA rows r_k = phi(T_k, delta_k(L)) / F_c (tca::contact_residual: the free-coil law
   /// T_k - F_tca(delta_k) with coil contact) with delta at yL[delta0 + i]; sets dphi_dT and
@@ -30,14 +30,14 @@ struct TipConditions : RodRhs {
   /// of the sensitivity IVP (chain rule: dr = (dr/dy) Y(L) + dr/dT), after tip_residual at
   /// the same point (its dphi_dT, dphi_ddelta): the layout's tip rows
   /// (Layout::tip_rows_jacobian) and the TCA rows. False when J is not finite.
-  bool tip_jacobian(const Actuation& act, double lambda, const Eigen::VectorXd& x,
+  bool tip_jacobian(const rod::Loads& act, double lambda, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& y, const Eigen::VectorXd& Y, Eigen::MatrixXd& J) const;
   /// Tip force the holder applies to the rod (world frame) for unknowns x; 0 without a
   /// tip constraint.
   Vec3 reaction_W(const Eigen::VectorXd& x) const;
   /// Global equilibrium (docs/conventions.md): n(0), m(0) of the 3-D unknowns x against the
   /// applied loads, with yL = y(L) (3-D layout) and cT, f_ext_W set for x at full load.
-  void equilibrium(const Actuation& act, const Eigen::VectorXd& x, const Eigen::VectorXd& yL,
+  void equilibrium(const rod::Loads& act, const Eigen::VectorXd& x, const Eigen::VectorXd& yL,
                    Summary& summary) const;
 
   /// Characteristic force F_c [N] of the residual scaling (shooting.hpp).

@@ -31,7 +31,7 @@ constexpr double kPathMinSpacing = 0.5;
 
 }  // namespace
 
-Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solution& sol, bool warm,
+Summary::Status ShootingSolver::Impl::direct_solve(const rod::Loads& act, Solution& sol, bool warm,
                                                    Eigen::VectorXd& x, Eigen::MatrixXd& J,
                                                    Summary& summary, std::string& why) {
   // Two-level start (Options::coarse_steps). Cold: converge the coarse problem first
@@ -77,7 +77,7 @@ Summary::Status ShootingSolver::Impl::direct_solve(const Actuation& act, Solutio
   return newton(act, 1.0, x, J, summary, why, options.tolerance);
 }
 
-bool ShootingSolver::Impl::warm_start_pays(const Actuation& act, const Solution& sol,
+bool ShootingSolver::Impl::warm_start_pays(const rod::Loads& act, const Solution& sol,
                                            const Eigen::MatrixXd& J, Eigen::VectorXd& x_cold,
                                            bool& loaded_guess) {
   // Only where the warm start would go straight to the fine level (direct_solve).
@@ -116,9 +116,9 @@ bool ShootingSolver::Impl::warm_start_pays(const Actuation& act, const Solution&
   return pays;
 }
 
-Summary::Status ShootingSolver::Impl::omega_star_homotopy(const Actuation& act, Solution& sol,
-                                                         Eigen::VectorXd& x, Eigen::MatrixXd& J,
-                                                         Summary& summary, std::string& why) {
+Summary::Status ShootingSolver::Impl::omega_star_homotopy(const rod::Loads& act, Solution& sol,
+                                                          Eigen::VectorXd& x, Eigen::MatrixXd& J,
+                                                          Summary& summary, std::string& why) {
   struct Restore {  // mu = 1 on every return
     ShootingSolver::Impl& s;
     ~Restore() { s.set_omega_star_fraction(1.0); }
@@ -165,7 +165,7 @@ Summary::Status ShootingSolver::Impl::omega_star_homotopy(const Actuation& act, 
   return Summary::Status::kConverged;
 }
 
-void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen::VectorXd& xc,
+void ShootingSolver::Impl::cold_extrapolation(const rod::Loads& act, const Eigen::VectorXd& xc,
                                               const Eigen::MatrixXd& Jc, Eigen::VectorXd& x,
                                               Eigen::MatrixXd& J, Summary& summary) {
   Eigen::VectorXd xm = xc;
@@ -183,7 +183,7 @@ void ShootingSolver::Impl::cold_extrapolation(const Actuation& act, const Eigen:
   J = jacobian_updates <= kMaxHandedOverUpdates ? Jm : Eigen::MatrixXd();
 }
 
-void ShootingSolver::Impl::refresh_tca_rows(const Actuation& act, const Eigen::VectorXd& x,
+void ShootingSolver::Impl::refresh_tca_rows(const rod::Loads& act, const Eigen::VectorXd& x,
                                             Eigen::MatrixXd& J) {
   if (n_tca == 0 || !memo_valid || x_acc.size() != x.size() || x_acc != x) return;
   const std::vector<double> a_old = acc_dphi_dT, b_old = acc_dphi_ddelta;
@@ -199,12 +199,12 @@ void ShootingSolver::Impl::refresh_tca_rows(const Actuation& act, const Eigen::V
   }
 }
 
-Eigen::VectorXd ShootingSolver::Impl::actuation_vector(const Actuation& act) {
+Eigen::VectorXd ShootingSolver::Impl::actuation_vector(const rod::Loads& act) {
   int n = 9;
-  for (const ActuatorDrive& d : act.actuators) n += 1 + 2 * static_cast<int>(d.segments.size());
+  for (const rod::ActuatorLoad& d : act.actuators) n += 1 + 2 * static_cast<int>(d.segments.size());
   Eigen::VectorXd a(n);
   int k = 0;
-  for (const ActuatorDrive& d : act.actuators) {
+  for (const rod::ActuatorLoad& d : act.actuators) {
     a[k++] = d.tension_N;
     for (const tca::Segment& seg : d.segments) {
       a[k++] = seg.fraction;

@@ -53,7 +53,7 @@ const char* fe_status_name(beam_fe::Summary::Status s) {
 Run solve_shooting(const rod::RodModel& model, const cosserat::Options& options,
                    cosserat::Summary::Status* status = nullptr) {
   cosserat::ShootingSolver solver(model, options);
-  const cosserat::Actuation actuation = cosserat::Actuation::from_model(model);
+  const rod::Loads actuation = rod::Loads::from_model(model);
   cosserat::Solution solution;
   const auto t0 = std::chrono::steady_clock::now();
   const cosserat::Summary summary = solver.solve(actuation, solution);

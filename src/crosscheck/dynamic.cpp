@@ -74,7 +74,7 @@ void run_loop(const TimeGrid& g, double dt, DynamicRun& run, Dyn& dyn, Init init
   run.ok = true;
 }
 
-beam_fe::DynamicsOptions fe_options(const rod::RodModel& model, const DynamicSettings& s) {
+beam_fe::DynamicsOptions fe_options(const DynamicSettings& s) {
   beam_fe::DynamicsOptions o;
   o.elements = s.elements;
   o.order = s.order;
@@ -82,8 +82,7 @@ beam_fe::DynamicsOptions fe_options(const rod::RodModel& model, const DynamicSet
   o.rho_inf = s.rho_inf;
   o.tolerance = s.fe_tolerance;
   o.max_iterations = s.max_iterations;
-  // viscosity_Pa_s unset: the model's, a constant or a profile along s (as the shooting run's).
-  o.tip_mass_kg = model.tip_mass_kg;
+  // viscosity_Pa_s and tip_mass_kg unset: the model's (as the shooting run's).
   return o;
 }
 
@@ -106,7 +105,7 @@ std::string fe_dynamics_unsupported(const rod::RodModel& model) {
   try {
     DynamicSettings s;
     s.elements = 1;
-    beam_fe::BeamDynamics probe(model, fe_options(model, s));
+    beam_fe::BeamDynamics probe(model, fe_options(s));
   } catch (const DomainError& e) {
     return e.what();
   }
@@ -139,7 +138,7 @@ DynamicRun run_dynamics(const rod::RodModel& model, DynamicMethod method,
         [&](std::string& why) { return outcome(dyn.initialize(loads(0.0)), why); },
         [&](double t, std::string& why) { return outcome(dyn.step(loads(t)), why); });
   } else {
-    beam_fe::BeamDynamics dyn(model, fe_options(model, s));
+    beam_fe::BeamDynamics dyn(model, fe_options(s));
     run.grid_steps = s.elements;
     auto outcome = [](const beam_fe::BeamDynamicsSummary& r, std::string& why) {
       why = r.converged() ? "" : std::string(beam_fe::to_string(r.status)) + ": " + r.message;

@@ -130,12 +130,20 @@ Loads Loads::applied(const RodModel& model) const {
 }
 
 double characteristic_force_N(const RodModel& model, const Loads& loads) {
-  if (loads.load_scale != 1.0) return characteristic_force_N(model, loads.applied(model));
+  return characteristic_force_N(model, loads, model.tip_mass_kg);
+}
+
+double characteristic_force_N(const RodModel& model, const Loads& loads, double tip_mass_kg) {
+  if (loads.load_scale != 1.0)
+    return characteristic_force_N(model, loads.applied(model), tip_mass_kg);
   const Loads& a = loads;  // no copy: called once per solve by both solvers
   const double L = model.length_m;
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   const double EI = std::min(K_omega.x(), K_omega.y());
-  double load = std::max(tip_force_with_weight_W_N(model, a).norm(), a.tip_moment_W_Nm.norm() / L);
+  const Eigen::Vector3d tip_force =
+      tip_mass_kg == 0.0 ? a.tip_force_W_N
+                         : Eigen::Vector3d(a.tip_force_W_N + tip_mass_kg * a.gravity_W_m_s2);
+  double load = std::max(tip_force.norm(), a.tip_moment_W_Nm.norm() / L);
   load = std::max(
       load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
   for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
@@ -149,20 +157,6 @@ double characteristic_force_N(const RodModel& model, const Loads& loads) {
 Eigen::Vector3d tip_force_with_weight_W_N(const RodModel& model, const Loads& loads) {
   if (model.tip_mass_kg == 0.0) return loads.tip_force_W_N;
   return loads.tip_force_W_N + model.tip_mass_kg * loads.gravity_W_m_s2;
-}
-
-RodModel with_loads(const RodModel& model, const Loads& loads) {
-  loads.validate(model);
-  const Loads a = loads.applied(model);
-  RodModel m = model;
-  m.tip_force_W_N = a.tip_force_W_N;
-  m.tip_moment_W_Nm = a.tip_moment_W_Nm;
-  m.gravity_W_m_s2 = a.gravity_W_m_s2;
-  for (std::size_t i = 0; i < m.actuators.size(); ++i) {
-    m.actuators[i].drive.tension_N = a.actuators[i].tension_N;
-    m.actuators[i].drive.segments = a.actuators[i].segments;
-  }
-  return m;
 }
 
 }  // namespace tcasim::rod

@@ -58,14 +58,13 @@ struct Loads {
 /// rho A |g| L, c_i |T_i| of the tension drives). The shooting solver scales its residual by
 /// F_c of the model's own loads (cosserat/shooting.hpp).
 double characteristic_force_N(const RodModel& model, const Loads& loads);
+/// characteristic_force_N with the tip point mass tip_mass_kg in place of the model's (a
+/// dynamics option may replace it).
+double characteristic_force_N(const RodModel& model, const Loads& loads, double tip_mass_kg);
 
 /// The force on the rod at its tip including the tip mass's weight [N] (world frame):
 /// loads.tip_force_W_N + model.tip_mass_kg loads.gravity_W_m_s2 (exactly tip_force_W_N when
 /// the tip mass is 0). Both solvers apply this in statics.
 Eigen::Vector3d tip_force_with_weight_W_N(const RodModel& model, const Loads& loads);
-
-/// A copy of `model` whose own loads (drive tensions and segments, tip wrench, gravity) are
-/// loads.applied(model); validates the loads first.
-RodModel with_loads(const RodModel& model, const Loads& loads);
 
 }  // namespace tcasim::rod

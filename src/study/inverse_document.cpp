@@ -20,7 +20,7 @@ json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 DocumentRun inverse_document(const rod::RodModel& model, const Eigen::Vector3d& target_m,
                              const cosserat::InverseOptions& options) {
   cosserat::ShootingSolver solver(model, cosserat::Options{});
-  cosserat::Actuation act = cosserat::Actuation::from_model(model);
+  rod::Loads act = rod::Loads::from_model(model);
   // Start from rest: TCAs at ambient (their material's reference temperature).
   for (int i : options.actuators) {
     const rod::Actuator& a = model.actuators[i];

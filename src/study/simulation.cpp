@@ -148,7 +148,8 @@ rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOpti
     fo.max_iterations = o.max_iterations;
     // The option overrides the scenario's viscosity (a constant or a profile along s).
     if (o.viscosity_Pa_s) fo.viscosity_Pa_s = *o.viscosity_Pa_s;
-    fo.tip_mass_kg = o.tip_mass_kg.value_or(model.tip_mass_kg);
+    // The option overrides the scenario's tip mass only when given (as the shooting run's).
+    if (o.tip_mass_kg) fo.tip_mass_kg = *o.tip_mass_kg;
     std::unique_ptr<beam_fe::BeamDynamics> dyn;
     try {
       dyn = std::make_unique<beam_fe::BeamDynamics>(model, fo);

@@ -146,17 +146,18 @@ TEST(BeamFeAssembly, BorderedTangentWithTcaTipMomentAndGravityMatchesFiniteDiffe
   opt.elements = 3;
   opt.order = 2;
   const Discretization disc(model, opt);
+  const LoadCase disc_loads = disc.load_case(rod::Loads::from_model(model));
   State st = perturbed_state(disc, 11u, 0.002);
   st.tensions_N = {-0.02, 0.004};
   const double lambda = 0.7;
-  disc.apply_prescribed_tensions(st, lambda);
+  disc.apply_prescribed_tensions(disc_loads, st, lambda);
   Eigen::SparseMatrix<double> K;
-  disc.residual(st, lambda, &K);
+  disc.residual(st, disc_loads, lambda, &K);
   const MatrixXd K_fd = test_support::jacobian(
       [&](const VectorXd& dx) {
         State t = st;
         disc.retract(t, dx);
-        return disc.residual(t, lambda);
+        return disc.residual(t, disc_loads, lambda);
       },
       VectorXd::Zero(disc.dof_count()), kMillimetreScaleStep);
   EXPECT_LT(scaled_difference(MatrixXd(K), K_fd), kTangentTolerance);
@@ -175,6 +176,7 @@ TEST(BeamFeAssembly, BorderedTangentWithPinnedOrNormalTipConstraintMatchesFinite
     opt.elements = 3;
     opt.order = 2;
     const Discretization disc(model, opt);
+    const LoadCase disc_loads = disc.load_case(rod::Loads::from_model(model));
     ASSERT_EQ(disc.constraint_count(), normal_only ? 1 : 3);
     State st = perturbed_state(disc, 13u, 0.002);
     st.tensions_N = {-0.02};
@@ -182,14 +184,14 @@ TEST(BeamFeAssembly, BorderedTangentWithPinnedOrNormalTipConstraintMatchesFinite
         normal_only ? Vector3d(0.012 * *c.normal_W) : Vector3d(0.01, -0.02, 0.005);
     const double lambda = 0.6;
     Eigen::SparseMatrix<double> K;
-    const VectorXd r = disc.residual(st, lambda, &K);
+    const VectorXd r = disc.residual(st, disc_loads, lambda, &K);
     // The constraint rows are not trivially zero here (the tip is off its target).
     EXPECT_GT(r.tail(disc.constraint_count()).cwiseAbs().maxCoeff(), 1e-6);
     const MatrixXd K_fd = test_support::jacobian(
         [&](const VectorXd& dx) {
           State t = st;
           disc.retract(t, dx);
-          return disc.residual(t, lambda);
+          return disc.residual(t, disc_loads, lambda);
         },
         VectorXd::Zero(disc.dof_count()), kMillimetreScaleStep);
     EXPECT_LT(scaled_difference(MatrixXd(K), K_fd), kTangentTolerance);

@@ -401,8 +401,9 @@ TEST(BeamFeSolver, ConstantStrainGuessHasTheExactTcaTensionAndNodalRotations) {
   testing::add_tension_string(m, "pull", -0.002, 0.002, 0.01);
   const Options opt = options(5, 2);
   const Discretization disc(m, opt);
+  const LoadCase disc_loads = disc.load_case(rod::Loads::from_model(m));
   State guess = disc.reference_state();
-  ASSERT_TRUE(disc.constant_strain_guess(1.0, guess));
+  ASSERT_TRUE(disc.constant_strain_guess(disc_loads, 1.0, guess));
   const Solved s = run(m, opt);
   ASSERT_TRUE(s.summary.converged()) << s.summary.message;
   for (std::size_t i = 0; i < m.actuators.size(); ++i) {
@@ -418,8 +419,9 @@ TEST(BeamFeSolver, ConstantStrainGuessHasTheExactTcaTensionAndNodalRotations) {
   // Helical routing has no constant-strain solution: no guess.
   testing::add_tension_string(m, "helix", 0.002, 0.0, 0.01, 1, 12.0);
   const Discretization helical(m, opt);
+  const LoadCase helical_loads = helical.load_case(rod::Loads::from_model(m));
   State untouched = helical.reference_state();
-  EXPECT_FALSE(helical.constant_strain_guess(1.0, untouched));
+  EXPECT_FALSE(helical.constant_strain_guess(helical_loads, 1.0, untouched));
 }
 
 TEST(BeamFeSolver, WarmStartFromAnotherTemperatureConvergesToTheColdStartSolution) {

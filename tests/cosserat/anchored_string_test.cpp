@@ -142,7 +142,7 @@ TEST(ShootingAnchoredString, SensitivityJacobianThroughSplineKinksMatchesCentral
   for (const int n : {32, 64, 128}) {
     ShootingSolver solver(m, rk4(n));
     Solution sol;
-    const Summary s = solver.solve(Actuation::from_model(m), sol);
+    const Summary s = solver.solve(rod::Loads::from_model(m), sol);
     ASSERT_TRUE(s.converged()) << s.message;
     h.push_back(m.length_m / n);
     imbalance.push_back(s.force_imbalance_W_N.norm() + s.moment_imbalance_W_Nm.norm() / m.length_m);
@@ -158,7 +158,7 @@ TEST(ShootingAnchoredString, AnchoredStringsConvergeAndBalanceGlobally) {
   m.material.density_kg_m3 = 1000;
   ShootingSolver solver(m, rk4(64));
   Solution sol;
-  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  const Summary s = solver.solve(rod::Loads::from_model(m), sol);
   ASSERT_TRUE(s.converged()) << s.message;
   // Only the string from the base loads the base; the others are self-balanced.
   EXPECT_LE(s.force_imbalance_W_N.norm(), 1e-9);

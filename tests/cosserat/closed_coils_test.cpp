@@ -49,7 +49,7 @@ TEST(ClosedCoils, TcaHeldClosedByALoadAboveItsBlockedForceIsARigidStrut) {
   const double fb = m.actuators[0].drive.tca->blocked_force(t_K);
   ASSERT_LT(cf.strut_tension_N, fb);  // the load exceeds what the TCA can hold open
   ShootingSolver solver(m, strut_options());
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   // Start away from the closed form (the cold guess already is it): the straight rod with the
   // TCA pushing at its free-coil force, coils open.
   Solution sol;
@@ -84,7 +84,7 @@ TEST(ClosedCoils, SweepOpensTheCoilsAtThePredictedOnsetWithAContinuousKink) {
   EXPECT_NEAR(units::K_to_degC(*onset_K), kOnset_degC, 1e-6);
 
   ShootingSolver solver(m, strut_options());
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const double step_K = 0.5;
   std::vector<double> t_K;
@@ -135,13 +135,13 @@ TEST(ClosedCoils, InverseSolveStartingWithClosedCoilsReachesATargetAboveTheOnset
   const rod::RodModel m = strut_rod_opening_at(kOnset_degC, units::degC_to_K(40.0));
   const double target_K = units::degC_to_K(75.0);
   ShootingSolver solver(m, strut_options());
-  Actuation hot = Actuation::from_model(m);
+  rod::Loads hot = rod::Loads::from_model(m);
   hot.set_temperature_K(0, target_K);
   Solution hs;
   ASSERT_TRUE(solver.solve(hot, hs).converged());
   const Eigen::Vector3d target = hs.tip_state.head<3>();
 
-  Actuation act = Actuation::from_model(m);  // 40 degC: closed, no temperature sensitivity
+  rod::Loads act = rod::Loads::from_model(m);  // 40 degC: closed, no temperature sensitivity
   Solution sol;
   InverseOptions o;
   o.actuators = {0};

@@ -76,7 +76,7 @@ struct Pose {
   Matrix3d R;
 };
 
-Pose solve_pose(ShootingSolver& solver, const Actuation& a, Solution sol) {
+Pose solve_pose(ShootingSolver& solver, const rod::Loads& a, Solution sol) {
   const Summary s = solver.solve(a, sol);
   EXPECT_TRUE(s.converged()) << s.message;
   return {sol.tip_state.head<3>(), Eigen::Map<const Matrix3d>(sol.tip_state.data() + 3)};
@@ -90,7 +90,7 @@ Eigen::Matrix<double, 6, 1> pose_diff(const Pose& a, const Pose& b, const Matrix
 }
 
 /// J and C by central differences of full (warm-started) BVP solves.
-void bvp_differences(ShootingSolver& solver, const rod::RodModel& m, const Actuation& a,
+void bvp_differences(ShootingSolver& solver, const rod::RodModel& m, const rod::Loads& a,
                      const Solution& sol, const std::vector<int>& vars, MatrixXd& J, MatrixXd& C) {
   const Matrix3d R0 = Eigen::Map<const Matrix3d>(sol.tip_state.data() + 3);
   const double Fc = solver.characteristic_force_N();
@@ -100,7 +100,7 @@ void bvp_differences(ShootingSolver& solver, const rod::RodModel& m, const Actua
     const bool tca = m.actuators[i].drive.type == rod::Drive::Type::kTca;
     const double v = tca ? a.actuators[i].segments[0].temperature_K : a.actuators[i].tension_N;
     const double h = tca ? 0.01 : 1e-3 * std::max(std::abs(v), Fc);
-    Actuation ap = a, am = a;
+    rod::Loads ap = a, am = a;
     if (tca) {
       ap.set_temperature_K(i, v + h);
       am.set_temperature_K(i, v - h);
@@ -113,7 +113,7 @@ void bvp_differences(ShootingSolver& solver, const rod::RodModel& m, const Actua
   C.resize(6, 6);
   for (int c = 0; c < 6; ++c) {
     const double h = 1e-4 * Fc * (c < 3 ? 1.0 : m.length_m);
-    Actuation ap = a, am = a;
+    rod::Loads ap = a, am = a;
     if (c < 3) {
       ap.tip_force_W_N[c] += h;
       am.tip_force_W_N[c] -= h;
@@ -127,7 +127,7 @@ void bvp_differences(ShootingSolver& solver, const rod::RodModel& m, const Actua
 
 void check_derivatives(const rod::RodModel& m, const std::vector<int>& vars) {
   ShootingSolver solver(m, rk4());
-  Actuation a = Actuation::from_model(m);
+  rod::Loads a = rod::Loads::from_model(m);
   a.tip_force_W_N = {0.002, -0.001, 0.0};  // a loaded tip: C at a non-trivial point
   Solution sol;
   ASSERT_TRUE(solver.solve(a, sol).converged());
@@ -171,7 +171,7 @@ TEST(TipDerivatives, JacobianOfTensionDrivesMatchesBvpDifferences) {
 TEST(TipDerivatives, RejectsAModelWithATipConstraint) {
   rod::RodModel m = gripper_finger();
   ShootingSolver solver(m, rk4());
-  const Actuation a = Actuation::from_model(m);
+  const rod::Loads a = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(solver.solve(a, sol).converged());
   TipDerivatives d;
@@ -182,7 +182,7 @@ TEST(TipDerivatives, RejectsAModelWithATipConstraint) {
 /// Tip position of model m with its TCA temperatures set to t_degC.
 Vector3d forward_tip(const rod::RodModel& m, const std::vector<double>& t_degC) {
   ShootingSolver solver(m, rk4());
-  Actuation a = Actuation::from_model(m);
+  rod::Loads a = rod::Loads::from_model(m);
   for (std::size_t k = 0; k < t_degC.size(); ++k) a.set_temperature_K(k, degC_to_K(t_degC[k]));
   Solution sol;
   const Summary s = solver.solve(a, sol);
@@ -194,7 +194,7 @@ Vector3d forward_tip(const rod::RodModel& m, const std::vector<double>& t_degC) 
 InverseResult inverse_from_rest(const rod::RodModel& m, const Vector3d& target,
                                 const InverseOptions& o) {
   ShootingSolver solver(m, rk4());
-  Actuation a = Actuation::from_model(m);
+  rod::Loads a = rod::Loads::from_model(m);
   for (std::size_t k = 0; k < m.actuators.size(); ++k) a.set_temperature_K(k, degC_to_K(25.0));
   Solution sol;
   return solve_inverse(solver, m, target, o, a, sol);
@@ -273,7 +273,7 @@ TEST(Inverse, UnderActuatedReachesATargetOnItsCurveAndLeastSquaresOffIt) {
 TEST(Inverse, PositionAndOrientationTargetIsReached) {
   const rod::RodModel m = tca_rod({0.0, 90.0}, {25.0, 25.0});
   ShootingSolver solver(m, rk4());
-  Actuation g = Actuation::from_model(m);
+  rod::Loads g = rod::Loads::from_model(m);
   g.set_temperature_K(0, degC_to_K(95.0));
   g.set_temperature_K(1, degC_to_K(60.0));
   Solution gs;
@@ -296,7 +296,7 @@ TEST(Inverse, TensionDrivesReachATarget) {
   g.actuators[1].drive.tension_N = 0.002;
   const Vector3d target = solve(g, rk4()).tip_position_W_m;
   ShootingSolver solver(m, rk4());
-  Actuation a = Actuation::from_model(m);
+  rod::Loads a = rod::Loads::from_model(m);
   Solution sol;
   const InverseResult r = solve_inverse(solver, m, target, InverseOptions{}, a, sol);
   EXPECT_TRUE(r.converged()) << r.message;

@@ -20,8 +20,8 @@ inline double sensitivity_vs_central_difference(const rod::RodModel& m, Options 
   o.jacobian = JacobianMethod::kCentralDifference;
   ShootingSolver cen(m, o);
   Eigen::MatrixXd Js, Jc;
-  EXPECT_TRUE(sens.jacobian(Actuation::from_model(m), x, Js));
-  EXPECT_TRUE(cen.jacobian(Actuation::from_model(m), x, Jc));
+  EXPECT_TRUE(sens.jacobian(rod::Loads::from_model(m), x, Js));
+  EXPECT_TRUE(cen.jacobian(rod::Loads::from_model(m), x, Jc));
   if (Js.size() == 0 || Js.rows() != Jc.rows() || Js.cols() != Jc.cols()) return HUGE_VAL;
   return test_support::worst_column_relative_difference(Js, Jc);
 }

@@ -109,7 +109,7 @@ TEST(LieGroupShooting, ConstantStrainRodIsExactAtAnyStepCount) {
   m.reference_curvature_B_1_m = Vector3d(4.0, -30.0, 0.0);  // closed form: omega_z = 0
   add_tension_string(m, "a", 0.0030, 0.0010, 0.004);
   add_tension_string(m, "b", -0.0020, 0.0025, 0.0015, 2);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   // docs/conventions.md "Closed form".
   std::vector<double> cT;
   for (const rod::Actuator& a : m.actuators) cT.push_back(a.count * a.drive.tension_N);
@@ -166,7 +166,7 @@ rod::RodModel varying_strain_rod(bool with_tca) {
 Vector3d solved_tip(const rod::RodModel& m, const Options& o) {
   ShootingSolver solver(m, o);
   Solution sol;
-  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  const Summary s = solver.solve(rod::Loads::from_model(m), sol);
   EXPECT_TRUE(s.converged()) << s.message;
   return sol.tip_state.head<3>();
 }
@@ -204,7 +204,7 @@ TEST(LieGroupShooting, SensitivityJacobianMatchesCentralDifferences) {
     o.jacobian = method;
     ShootingSolver solver(m, o);
     Eigen::MatrixXd J;
-    EXPECT_TRUE(solver.jacobian(Actuation::from_model(m), x, J));
+    EXPECT_TRUE(solver.jacobian(rod::Loads::from_model(m), x, J));
     return J;
   };
   const Eigen::MatrixXd Js = jacobian_by(JacobianMethod::kSensitivity);
@@ -220,7 +220,7 @@ TEST(LieGroupShooting, SensitivityJacobianMatchesCentralDifferences) {
 TEST(LieGroupShooting, RotationStaysOrthogonalAtFewSteps) {
   const rod::RodModel m = varying_strain_rod(true);
   ShootingSolver solver(m, lie_options(4, 1e-10));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -247,7 +247,7 @@ TEST(WarmStart, SweepStepsReachTheColdSolutionWithFewIvps) {
   rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
   const Options o = rk4_options(32, 1e-10);
   ShootingSolver warm_solver(m, o), cold_solver(m, o);
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution warm;
   ASSERT_TRUE(warm_solver.solve(act, warm).converged());
   int warm_ivps = 0, cold_ivps = 0, steps = 0;
@@ -274,7 +274,7 @@ TEST(WarmStart, SweepStepsReachTheColdSolutionWithFewIvps) {
 TEST(WarmStart, UnchangedActuationConvergesWithoutAnIvp) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
   ShootingSolver solver(m, rk4_options(32, 1e-10));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(solver.solve(act, sol).converged());
   const Summary again = solver.solve(act, sol);
@@ -289,7 +289,7 @@ TEST(WarmStart, AWarmPointFartherThanTheGuessTakesTheColdPath) {
   const rod::RodModel m = testing::steel_tendon_rod();
   Options o = rk4_options(100, 1e-10);
   ShootingSolver solver(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution cold;
   ASSERT_TRUE(solver.solve(act, cold).converged());
   Solution warm = cold;
@@ -309,7 +309,7 @@ TEST(WarmStart, AWarmPointFartherThanTheGuessTakesTheColdPath) {
 TEST(WarmStart, ANearWarmPointGoesStraightToTheFineLevel) {
   rod::RodModel m = testing::steel_tendon_rod();
   ShootingSolver solver(m, rk4_options(100, 1e-10));
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary cold = solver.solve(act, sol);
   ASSERT_TRUE(cold.converged());
@@ -332,7 +332,7 @@ TEST(MultiLevel, LevelsChangeOnlyTheStartNotTheSolution) {
     with.kinematics = kin;
     Options without = with;
     without.coarse_steps = 0;  // single level, exact fine Jacobians
-    const Actuation act = Actuation::from_model(m);
+    const rod::Loads act = rod::Loads::from_model(m);
     ShootingSolver a(m, with), b(m, without);
     Solution sa, sb;
     const Summary ra = a.solve(act, sa), rb = b.solve(act, sb);

@@ -156,7 +156,7 @@ struct Solved {
   Solution solution;
 };
 
-Solved solve_with(const rod::RodModel& m, const Options& o, const Actuation& act) {
+Solved solve_with(const rod::RodModel& m, const Options& o, const rod::Loads& act) {
   ShootingSolver solver(m, o);
   Solved s;
   s.summary = solver.solve(act, s.solution);
@@ -203,7 +203,7 @@ void expect_same_solution(const Solved& planar_solve, const Solved& full, const 
 
 TEST(PlanarReduction, CircularManipulatorMatchesThe3dSolveForEveryScheme) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   struct Case {
     ode::Method method;
     int steps, coarse;
@@ -220,7 +220,7 @@ TEST(PlanarReduction, WarmStartedSweepMatchesThe3dSweep) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
   ShootingSolver planar_solver(m, scheme_options(ode::Method::kRk8, 4, 2, true));
   ShootingSolver full_solver(m, scheme_options(ode::Method::kRk8, 4, 2, false));
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solved p, f;
   for (int t = 25; t <= 150; t += 5) {
     act.set_temperature_K(0, units::degC_to_K(t));
@@ -249,7 +249,7 @@ rod::RodModel three_string_rod() {
 
 TEST(PlanarReduction, SeveralStringsRotatedBaseAndTipLoadsMatchThe3dSolve) {
   const rod::RodModel m = three_string_rod();
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   act.tip_force_W_N = {0.0, 1e-3, -2e-3};   // in the world y-z plane = body x-z plane
   act.tip_moment_W_Nm = {-1e-5, 0.0, 0.0};  // along world -x = body y
   for (const ode::Method method : {ode::Method::kRk4, ode::Method::kRk8}) {
@@ -279,7 +279,7 @@ TEST(PlanarReduction, ResultsAreSampledInThePlaneAsThe3dIvpSamplesThem) {
   rod::RodModel m = three_string_rod();
   m.probes = {{"mid", 0.5 * m.length_m, {0.001, 0.002, 0.0}},
               {"between", 0.37 * m.length_m, {-0.002, 0.0, 0.001}}};
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   act.tip_force_W_N = {0.0, 1e-3, -2e-3};
   ShootingSolver planar_solver(m, scheme_options(ode::Method::kRk4, 32, 4, true));
   ShootingSolver full_solver(m, scheme_options(ode::Method::kRk4, 32, 4, false));
@@ -330,12 +330,12 @@ TEST(PlanarReduction, OutOfPlaneLoadsAndModelsUseThe3dSolver) {
   const rod::RodModel m = three_string_rod();
   const Options o = scheme_options(ode::Method::kRk8, 6, 2, true);
   ShootingSolver solver(m, o);
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(solver.solve(act, sol).planar);
   // A tip force leaving the plane (world x = body -y), warm-started from the planar solution
   // (its reduced Jacobian and path are ignored): the 3-D solve, equal to a cold 3-D solve.
-  Actuation out = act;
+  rod::Loads out = act;
   out.tip_force_W_N = {2e-4, 0.0, 0.0};
   const Summary warm = solver.solve(out, sol);
   ASSERT_TRUE(warm.converged()) << warm.message;
@@ -350,7 +350,7 @@ TEST(PlanarReduction, OutOfPlaneLoadsAndModelsUseThe3dSolver) {
   // Back to planar loads: the warm start's unknowns are out of the plane, so 3-D again.
   EXPECT_FALSE(solver.solve(act, sol).planar);
   // Gravity with a component along the base frame's y (world -x).
-  Actuation tilted = act;
+  rod::Loads tilted = act;
   tilted.gravity_W_m_s2 = {0.5, 3.0, -9.81};
   Solution fresh;
   EXPECT_FALSE(solver.solve(tilted, fresh).planar);
@@ -359,7 +359,7 @@ TEST(PlanarReduction, OutOfPlaneLoadsAndModelsUseThe3dSolver) {
   off_axis.actuators[0].routing.offset_m.y() = 1e-4;
   ShootingSolver off_solver(off_axis, o);
   Solution off_sol;
-  EXPECT_FALSE(off_solver.solve(Actuation::from_model(off_axis), off_sol).planar);
+  EXPECT_FALSE(off_solver.solve(rod::Loads::from_model(off_axis), off_sol).planar);
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ void sweep_manipulator(bool planar) {
               {"between", 0.37 * m.length_m, {-0.002, 0.0, 0.001}}};
   const Options o = rk4(32, planar);
   ShootingSolver solver(m, o);
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   for (int t = 25; t <= 150; t += 25) {
     act.set_temperature_K(0, units::degC_to_K(t));
@@ -66,7 +66,7 @@ void sweep_manipulator(bool planar) {
     // Asked twice, and for the same unknowns under another gravity (not the memo's IVP).
     expect_same_result(solver.make_result(act, sol, s), fresh.make_result(act, sol, s),
                        what + ", again");
-    Actuation heavier = act;
+    rod::Loads heavier = act;
     heavier.gravity_W_m_s2 *= 1.5;
     expect_same_result(solver.make_result(heavier, sol, s), fresh.make_result(heavier, sol, s),
                        what + ", other gravity");
@@ -81,7 +81,7 @@ TEST(ResultSamples, VaryingBodyThroughTheHomotopyMatchesAFreshSampling) {
   const rod::RodModel m = rod::parse_scenario(test_support::hanging_tentacle(true));
   const Options o = rk4(40, true);
   ShootingSolver solver(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -94,7 +94,7 @@ TEST(ResultSamples, AnotherSolutionThanTheMemosIsIntegrated) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
   const Options o = rk4(32, true);
   ShootingSolver a(m, o), b(m, o);
-  Actuation hot = Actuation::from_model(m), warm = hot;
+  rod::Loads hot = rod::Loads::from_model(m), warm = hot;
   warm.set_temperature_K(0, units::degC_to_K(60.0));
   Solution sa, sb;
   const Summary s_hot = a.solve(hot, sa);

@@ -132,7 +132,7 @@ void expect_matches_closed_form(const rod::RodModel& m, const Solution& sol, con
 TEST(ShootingClosedForm, StraightStringsAtArbitraryOffsetsGiveExactConstantStrains) {
   const rod::RodModel m = soft_rod_with_strings();
   ShootingSolver solver(m, rk4_options(kClosedFormSteps, kClosedFormSolverTolerance));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   // Start away from the closed form (the default straight guess already is it).
   Solution sol;
   sol.valid = true;
@@ -150,7 +150,7 @@ TEST(ShootingClosedForm, TcaDriveTensionSolvesTheScalarEquationOfTheClosedForm) 
   testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0005,
                           units::degC_to_K(110.0));
   ShootingSolver solver(m, rk4_options(kClosedFormSteps, kClosedFormSolverTolerance));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -200,7 +200,7 @@ TEST_P(RollUp, EndMomentRollsTheRodIntoACircleOfRadiusEIOverM) {
   m.tip_moment_W_Nm = Vector3d(0.0, kappa * EI, 0.0);
   const int steps = 200;
   ShootingSolver solver(m, rk4_options(steps));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -229,7 +229,7 @@ TEST(Helix, EndMomentWithEqualBendingAndTorsionStiffnessGivesConstantCurvature) 
   m.tip_moment_W_Nm = M;
   const int steps = 400;
   ShootingSolver solver(m, rk4_options(steps));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -267,7 +267,7 @@ TEST_P(Mattiasson, TipDeflectionMatchesTheElasticaTable) {
   rod::RodModel m = testing::custom_rod(L, 1e7, 1e7, EI, EI);
   m.tip_force_W_N = Vector3d(c.k * EI / (L * L), 0.0, 0.0);  // dead load perpendicular to the rod
   ShootingSolver solver(m, rk4_options(400));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -297,7 +297,7 @@ TEST(ShootingSigns, PositiveTensionAtPlusXBendsTowardPlusX) {
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
   add_tension_string(m, "pull", 0.003, 0.0, 0.005);
   ShootingSolver solver(m, rk4_options(50, 1e-10));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -310,7 +310,7 @@ TEST(ShootingSigns, HeatedExtensionTcaAtPlusXBendsAwayTowardMinusX) {
   testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0,
                           units::degC_to_K(120.0));
   ShootingSolver solver(m, rk4_options(50, 1e-10));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -347,7 +347,7 @@ rod::RodModel general_3d_rod() {
 Vector3d converged_tip(const rod::RodModel& m, const Options& o) {
   ShootingSolver solver(m, o);
   Solution sol;
-  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  const Summary s = solver.solve(rod::Loads::from_model(m), sol);
   EXPECT_TRUE(s.converged()) << s.message;
   return Vector3d(sol.tip_state.head<3>());
 }
@@ -397,7 +397,7 @@ TEST(ShootingConvergence, Rk8TipErrorHasObservedOrderEightWithGravity) {
 /// start. The result names the scheme's order.
 void ExpectMultiLevelMatchesSingleLevel(const Options& multi, double order) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Options single = multi;
   single.coarse_steps = 0;
   ShootingSolver a(m, multi), b(m, single);
@@ -472,7 +472,7 @@ Eigen::MatrixXd jacobian_by(JacobianMethod method, int steps = 40) {
   o.jacobian = method;
   ShootingSolver solver(m, o);
   Eigen::MatrixXd J;
-  EXPECT_TRUE(solver.jacobian(Actuation::from_model(m), jacobian_test_point(), J));
+  EXPECT_TRUE(solver.jacobian(rod::Loads::from_model(m), jacobian_test_point(), J));
   return J;
 }
 
@@ -498,8 +498,8 @@ TEST(ShootingJacobian, SensitivityJacobianMatchesCentralDifferencesWithCvode) {
   o.jacobian = JacobianMethod::kCentralDifference;
   ShootingSolver cen(m, o);
   Eigen::MatrixXd Js, Jc;
-  ASSERT_TRUE(sens.jacobian(Actuation::from_model(m), jacobian_test_point(), Js));
-  ASSERT_TRUE(cen.jacobian(Actuation::from_model(m), jacobian_test_point(), Jc));
+  ASSERT_TRUE(sens.jacobian(rod::Loads::from_model(m), jacobian_test_point(), Js));
+  ASSERT_TRUE(cen.jacobian(rod::Loads::from_model(m), jacobian_test_point(), Jc));
   const double rel = (Js - Jc).norm() / Jc.norm();
   std::printf("[jacobian] CVODE sensitivity vs central differences: %.2e relative\n", rel);
   /// CVODE's adaptive steps make the residual map smooth only to ~rtol / h_fd = 1e-12 / 6e-6.
@@ -519,7 +519,7 @@ TEST(ShootingJacobian, ForwardDifferenceJacobianMatchesCentralDifferences) {
 
 TEST(ShootingJacobian, AllJacobianMethodsConvergeToTheSameSolution) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(90.0));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   std::vector<Eigen::VectorXd> xs;
   for (JacobianMethod method : {JacobianMethod::kSensitivity, JacobianMethod::kForwardDifference,
                                 JacobianMethod::kCentralDifference}) {
@@ -543,7 +543,7 @@ TEST(ShootingJacobian, AllJacobianMethodsConvergeToTheSameSolution) {
 TEST(ShootingEquilibrium, BaseReactionBalancesGravityTipWrenchAndHelicalStrings) {
   const rod::RodModel m = general_3d_rod();
   ShootingSolver solver(m, rk4_options(400));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -570,7 +570,7 @@ TEST(ShootingGuess, GravityGuessMatchesASaggingCantileverToItsSmallDeflection) {
   rod::RodModel m = testing::circular_rod(0.5, 0.002, 200e9, 0.25, 8000.0);
   m.gravity_W_m_s2 = {9.81, 0.0, 0.0};
   ShootingSolver solver(m, rk4_options(40));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(solver.solve(act, sol).converged());
   const Eigen::VectorXd guess = solver.initial_guess(act);
@@ -591,12 +591,12 @@ TEST(ShootingGuess, GravityGuessOfTheBentManipulatorIsCloserThanTheGuessWithout)
   rod::RodModel weightless = m;
   weightless.gravity_W_m_s2.setZero();
   ShootingSolver solver(m, rk4_options(64)), without(weightless, rk4_options(64));
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(solver.solve(act, sol).converged());
   const double with_error = std::abs(solver.initial_guess(act)[4] - sol.unknowns[4]);
   const double without_error =
-      std::abs(without.initial_guess(Actuation::from_model(weightless))[4] - sol.unknowns[4]);
+      std::abs(without.initial_guess(rod::Loads::from_model(weightless))[4] - sol.unknowns[4]);
   EXPECT_LT(with_error, 0.25 * without_error) << with_error << " vs " << without_error;
 }
 
@@ -609,7 +609,7 @@ TEST(ShootingRejections, OneIterationWithoutContinuationReportsNotConverged) {
   o.max_iterations = 1;
   o.continuation = false;
   ShootingSolver solver(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   EXPECT_FALSE(s.converged());
@@ -628,7 +628,7 @@ TEST(ShootingRejections, AbsurdCompressiveTensionFailsWithAReasonAndNoNaN) {
   Options o = rk4_options(40);
   o.max_iterations = 10;
   ShootingSolver solver(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   std::printf("[absurd] status %s: %s\n", to_string(s.status), s.message.c_str());
@@ -646,7 +646,7 @@ TEST(ShootingRejections, AbsurdCompressiveTensionFailsWithAReasonAndNoNaN) {
 
 void sweep_manipulator(const rod::RodModel& m) {
   ShootingSolver solver(m, rk4_options(40, 1e-10));
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   double previous_radius = HUGE_VAL;
   bool previous_active = false;
@@ -688,7 +688,7 @@ TEST(ShootingPath, SweepWithPathExtrapolationMatchesColdSolvesWithFewerIvps) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
   const Options o = rk6_options(10, 1e-10);
   ShootingSolver solver(m, o), cold_solver(m, o);
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution with_path, without_path;
   int ivps_with = 0, ivps_without = 0;
   for (int t_degC = 25; t_degC <= 150; t_degC += 5) {
@@ -719,7 +719,7 @@ TEST(ShootingPath, ColdSolveResetsThePathAndAFailedSolveClearsIt) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
   Options o = rk6_options(10, 1e-10);
   ShootingSolver solver(m, o);
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   for (int t_degC : {30, 35, 40}) {
     act.set_temperature_K(0, units::degC_to_K(t_degC));
@@ -751,7 +751,7 @@ namespace {
 double manipulator_tension(const std::vector<tca::Segment>& segments) {
   const rod::RodModel m = testing::circular_manipulator(units::degC_to_K(25.0));
   ShootingSolver solver(m, rk4_options(32, 1e-10));
-  Actuation act = Actuation::from_model(m);
+  rod::Loads act = rod::Loads::from_model(m);
   act.actuators[0].segments = segments;
   Solution sol;
   const Summary s = solver.solve(act, sol);

@@ -66,7 +66,7 @@ Options options(ode::Method method, int steps, Kinematics kinematics, bool plana
 /// Tip position of the converged solve (NaN if it did not converge).
 Eigen::Vector3d tip(const rod::RodModel& m, const Options& o) {
   ShootingSolver solver(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   EXPECT_TRUE(s.converged()) << s.message;

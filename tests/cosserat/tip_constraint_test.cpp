@@ -62,7 +62,7 @@ TEST(TipConstraint, PinnedTipIsHeldAndReactionBalancesGlobalEquilibrium) {
   h.model.tip_constraint = rod::TipConstraint{h.target, std::nullopt};
   ShootingSolver solver(h.model, rk4(400));
   EXPECT_EQ(solver.unknown_count(), 6 + 1 + 3);
-  const Actuation act = Actuation::from_model(h.model);
+  const rod::Loads act = rod::Loads::from_model(h.model);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -81,7 +81,7 @@ TEST(TipConstraint, PinnedReactionAppliedAsTipLoadReproducesHeldPosition) {
   Held h = square_held_at_60degC();
   h.model.tip_constraint = rod::TipConstraint{h.target, std::nullopt};
   ShootingSolver solver(h.model, rk4(64));
-  const Actuation act = Actuation::from_model(h.model);
+  const rod::Loads act = rod::Loads::from_model(h.model);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -111,7 +111,7 @@ TEST(TipConstraint, NormalOnlyHoldsTheNormalComponentWithAForceAlongTheNormal) {
   h.model.tip_constraint = rod::TipConstraint{h.target, n};
   ShootingSolver solver(h.model, rk4(400));
   EXPECT_EQ(solver.unknown_count(), 6 + 1 + 1);
-  const Actuation act = Actuation::from_model(h.model);
+  const rod::Loads act = rod::Loads::from_model(h.model);
   Solution sol;
   const Summary s = solver.solve(act, sol);
   ASSERT_TRUE(s.converged()) << s.message;
@@ -139,7 +139,7 @@ TEST(TipConstraint, SensitivityJacobianOfConstrainedResidualMatchesCentralDiffer
     Options os = rk4(32), oc = rk4(32);
     oc.jacobian = JacobianMethod::kCentralDifference;
     ShootingSolver ss(h.model, os), sc(h.model, oc);
-    const Actuation act = Actuation::from_model(h.model);
+    const rod::Loads act = rod::Loads::from_model(h.model);
     Solution sol;
     ASSERT_TRUE(ss.solve(act, sol).converged());
     Eigen::VectorXd x = sol.unknowns;

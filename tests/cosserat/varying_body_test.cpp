@@ -134,7 +134,7 @@ TEST(ShootingVaryingBody, SensitivityJacobianThroughCurvatureAndSectionJumpsWith
   ASSERT_TRUE(m.jumps_at(0.15));
   Options o = rk4(40);
   ShootingSolver sens(m, o);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   ASSERT_TRUE(sens.solve(act, sol).converged());
   o.jacobian = JacobianMethod::kCentralDifference;
@@ -164,7 +164,7 @@ TEST(ShootingVaryingBody, LoadedVaryingBodyConvergesAndBalancesGlobally) {
   m.material.density_kg_m3 = 1000;
   ShootingSolver solver(m, rk4(64));
   Solution sol;
-  const Summary s = solver.solve(Actuation::from_model(m), sol);
+  const Summary s = solver.solve(rod::Loads::from_model(m), sol);
   ASSERT_TRUE(s.converged()) << s.message;
   // The base reaction balances the (varying) weight, the tip wrench and the strings.
   EXPECT_LE(s.force_imbalance_W_N.norm(), 1e-9);
@@ -181,7 +181,7 @@ TEST(ShootingVaryingBody, ColdStartThroughTheCurvatureHomotopyFindsTheWarmStarts
     return rod::parse_scenario(test_support::hanging_tentacle(tapered));
   };
   const rod::RodModel m = tentacle(true), u = tentacle(false);
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   ShootingSolver cold(m, rk4(40));
   Solution sc;
   const Summary s = cold.solve(act, sc);
@@ -191,7 +191,7 @@ TEST(ShootingVaryingBody, ColdStartThroughTheCurvatureHomotopyFindsTheWarmStarts
 
   ShootingSolver uniform(u, rk4(40));
   Solution sw;
-  ASSERT_TRUE(uniform.solve(Actuation::from_model(u), sw).converged());
+  ASSERT_TRUE(uniform.solve(rod::Loads::from_model(u), sw).converged());
   ShootingSolver warm(m, rk4(40));
   const Summary w = warm.solve(act, sw);
   ASSERT_TRUE(w.converged()) << w.message;

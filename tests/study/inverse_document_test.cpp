@@ -26,7 +26,7 @@ TEST(InverseDocument, HoldsTheSolveInverseResultFromRest) {
 
   // The same solve by hand: default options, the TCA at its material's reference temperature.
   cosserat::ShootingSolver solver(model, cosserat::Options{});
-  cosserat::Actuation act = cosserat::Actuation::from_model(model);
+  rod::Loads act = rod::Loads::from_model(model);
   act.set_temperature_K(0, model.actuators[0].drive.tca->material().reference_temperature_K);
   cosserat::Solution sol;
   const cosserat::InverseResult r = cosserat::solve_inverse(solver, model, target, o, act, sol);

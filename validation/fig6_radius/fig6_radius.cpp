@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         tcasim::cosserat::Options options;
         options.integrator.steps = 64;
         tcasim::cosserat::ShootingSolver solver(model, options);
-        auto actuation = tcasim::cosserat::Actuation::from_model(model);
+        auto actuation = tcasim::rod::Loads::from_model(model);
         tcasim::cosserat::Solution solution;
         auto& curve = curves[{name, material}];
         {  // gate 2: reference temperature, no gravity

@@ -82,7 +82,7 @@ tcasim::cosserat::Options options() {
 /// Free tip at t_degC (cold start).
 bool free_tip(const tcasim::rod::RodModel& free, double t_degC, Vector3d& tip) {
   tcasim::cosserat::ShootingSolver solver(free, options());
-  tcasim::cosserat::Actuation a = tcasim::cosserat::Actuation::from_model(free);
+  tcasim::rod::Loads a = tcasim::rod::Loads::from_model(free);
   a.set_temperature_K(0, degC_to_K(t_degC));
   tcasim::cosserat::Solution sol;
   const bool ok = solver.solve(a, sol).converged();
@@ -148,9 +148,9 @@ int main(int argc, char** argv) {
 
     // Step 3: warm-started sweeps.
     tcasim::cosserat::ShootingSolver fs(free, options()), hs(held, options()), ws(wire, options());
-    tcasim::cosserat::Actuation fa = tcasim::cosserat::Actuation::from_model(free);
-    tcasim::cosserat::Actuation ha = tcasim::cosserat::Actuation::from_model(held);
-    tcasim::cosserat::Actuation wa = tcasim::cosserat::Actuation::from_model(wire);
+    tcasim::rod::Loads fa = tcasim::rod::Loads::from_model(free);
+    tcasim::rod::Loads ha = tcasim::rod::Loads::from_model(held);
+    tcasim::rod::Loads wa = tcasim::rod::Loads::from_model(wire);
     tcasim::cosserat::Solution fsol, hsol, wsol;
     std::vector<Point> pts;
     for (double t : temps) {

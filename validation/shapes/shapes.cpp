@@ -89,7 +89,7 @@ struct Row {
 
 /// The applied load scale F_load [N] of the header.
 double load_scale_N(const tcasim::rod::RodModel& model, const tcasim::rod::Result& result,
-                    const tcasim::cosserat::Actuation& actuation) {
+                    const tcasim::rod::Loads& actuation) {
   const double L = model.length_m;
   double f = L * model.weight_per_length_W_N_m().norm() + actuation.tip_force_W_N.norm() +
              actuation.tip_moment_W_Nm.norm() / L;
@@ -105,7 +105,7 @@ Level solve_level(const tcasim::rod::RodModel& model, int steps) {
   tcasim::cosserat::Options options;
   options.integrator.steps = steps;
   tcasim::cosserat::ShootingSolver solver(model, options);
-  const auto actuation = tcasim::cosserat::Actuation::from_model(model);
+  const auto actuation = tcasim::rod::Loads::from_model(model);
   tcasim::cosserat::Solution solution;
   Level level;
   level.summary = solver.solve(actuation, solution);
