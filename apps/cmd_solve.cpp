@@ -20,6 +20,7 @@
 #include "common/progress.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
+#include "method/method.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
@@ -115,16 +116,11 @@ beam_fe::Options fe_options(const FeFlags& f) {
   return o;
 }
 
-/// Solves the model's own actuation with the chosen method.
-rod::Result solve_with(const rod::RodModel& model, const std::string& method,
-                       const IntegratorFlags& integrator, const FeFlags& fe) {
-  if (method == "fe") {
-    const beam_fe::Options options = fe_options(fe);
-    beam_fe::State state;
-    const beam_fe::Summary summary = beam_fe::solve(model, options, state);
-    return beam_fe::make_result(model, options, state, summary);
-  }
-  return cosserat::solve(model, cosserat_options(integrator));
+/// The method `--method` names with its flags (the command line's one choice of method).
+method::StaticOptions static_options(const std::string& method, const IntegratorFlags& integrator,
+                                     const FeFlags& fe) {
+  if (method == "fe") return fe_options(fe);
+  return cosserat_options(integrator);
 }
 
 }  // namespace
@@ -153,7 +149,8 @@ void add_solve_command(CLI::App& app) {
       "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
   cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
-    const rod::Result result = solve_with(model, flags->method, flags->integrator, flags->fe);
+    const rod::Result result =
+        method::solve(model, static_options(flags->method, flags->integrator, flags->fe));
     rod::write_result(result, flags->out);
     if (!flags->vtk.empty()) rod::write_vtp(model, result, flags->vtk);
     if (!flags->shape_csv.empty()) rod::write_shape_csv(model, result, flags->shape_csv);
@@ -278,12 +275,8 @@ void add_sweep_command(CLI::App& app) {
     sweep.actuator = index;
     sweep.by_temperature = by_temperature;
     for (double v : values) sweep.values.push_back(by_temperature ? units::degC_to_K(v) : v);
-    if (flags->method == "fe") {
-      sweep.fe = fe_options(flags->fe);
-    } else {
-      sweep.shooting = cosserat_options(flags->integrator);
-      (void)cosserat::ShootingSolver(model, *sweep.shooting);  // InputError for bad options
-    }
+    sweep.method = static_options(flags->method, flags->integrator, flags->fe);
+    (void)method::StaticSolver(model, sweep.method);  // InputError for bad options
 
     // Chunks of --chunk points; this shard's part of them (all without --shard).
     const std::vector<IndexRange> chunks =

@@ -46,9 +46,9 @@ study::Sweep make_sweep(bool fe) {
     sweep.values.push_back(units::degC_to_K(degC));
   }
   if (fe) {
-    sweep.fe = beam_fe::Options{};
+    sweep.method = beam_fe::Options{};
   } else {
-    sweep.shooting = cosserat::Options{};
+    sweep.method = cosserat::Options{};
   }
   return sweep;
 }

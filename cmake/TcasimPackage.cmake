@@ -17,7 +17,7 @@
 #   <prefix>/bin/tcasim                    the command-line program
 include(CMakePackageConfigHelpers)
 
-set(TCASIM_COMPONENTS common tca rod cosserat beam_fe crosscheck study)
+set(TCASIM_COMPONENTS common tca rod cosserat beam_fe method crosscheck study)
 set(TCASIM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/tcasim")
 
 # The umbrella target: every component. Its target name differs from the `tcasim` program's.

@@ -18,6 +18,7 @@
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "json_convert.hpp"
+#include "method/method.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/vtk.hpp"
@@ -177,15 +178,15 @@ py::dict actuator_dict(const rod::ActuatorResult& a) {
   return e;
 }
 
+/// The method `method` names with its keywords (the module's one choice of method).
+method::StaticOptions static_options(const std::string& method, const SolveOptions& f) {
+  if (method == "fe") return fe_options(f);
+  return cosserat_options(f);
+}
+
 rod::Result solve_with(const rod::RodModel& model, const std::string& method,
                        const SolveOptions& f) {
-  if (method == "fe") {
-    const beam_fe::Options options = fe_options(f);
-    beam_fe::State state;
-    const beam_fe::Summary summary = beam_fe::solve(model, options, state);
-    return beam_fe::make_result(model, options, state, summary);
-  }
-  return cosserat::solve(model, cosserat_options(f));
+  return method::solve(model, static_options(method, f));
 }
 
 std::optional<std::string> fspath(const py::object& p) {
@@ -453,11 +454,7 @@ the solver runs.)") +
         sw.actuator = index;
         sw.by_temperature = by_temperature;
         for (double v : values) sw.values.push_back(by_temperature ? units::degC_to_K(v) : v);
-        if (method == "fe") {
-          sw.fe = fe_options(f);
-        } else {
-          sw.shooting = cosserat_options(f);
-        }
+        sw.method = static_options(method, f);
         std::vector<rod::Result> results(values.size());
         {
           py::gil_scoped_release release;

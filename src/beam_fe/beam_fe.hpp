@@ -276,6 +276,28 @@ class Discretization {
 /// The model's probes on `state` (Discretization::pose_at at each probe's s).
 std::vector<rod::ProbeResult> probe_results(const Discretization& disc, const State& state);
 
+/// The FE static solver of one model, with the call shape of cosserat::ShootingSolver: built
+/// once (validates the options: InputError naming the field; meshes the body), then
+/// solve(loads, state) per load case and make_result. Holds a reference to the model, which
+/// must outlive it; not thread-safe (one per thread), cheap to reuse across the points of a
+/// sweep.
+class Solver {
+ public:
+  Solver(const rod::RodModel& model, const Options& options);
+  /// Solves under `loads` from `state` (beam_fe::solve below says how).
+  Summary solve(const rod::Loads& loads, State& state) const;
+  /// The result file record of `state` (beam_fe::make_result below).
+  rod::Result make_result(const rod::Loads& loads, const State& state,
+                          const Summary& summary) const;
+  const Discretization& discretization() const { return disc_; }
+  const Options& options() const { return options_; }
+
+ private:
+  const rod::RodModel* model_;
+  Options options_;
+  Discretization disc_;
+};
+
 /// Solves the model from `state` (warm start if it matches the mesh, else from the
 /// reference configuration), ramping loads and actuation with a load factor lambda = 0 -> 1
 /// in adaptive steps (halve on failure, double after convergence within 4 iterations):

@@ -142,27 +142,7 @@ class BeamDynamics {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The loads at time t [s] (as cosserat::LoadsAt).
-using LoadsAt = std::function<rod::Loads(double t_s)>;
-
 /// The trajectory row of the current state (rod/trajectory.hpp).
 rod::TrajectoryRow trajectory_row(const BeamDynamics& dyn);
-
-/// Outcome of a trajectory run.
-struct TrajectorySummary {
-  bool ok = false;           ///< every step (and the static state) converged
-  long long steps_done = 0;  ///< converged time steps
-  std::string message;       ///< why it stopped early (empty when ok)
-};
-
-/// Runs `steps` time steps from the static state under loads_at(0) and writes the trajectory
-/// CSV of docs/scenario-format.md "Trajectory file" (the columns of `tcasim simulate`): the
-/// header, the row of t = 0, then every `output_every`-th step and the last one (a TCA's
-/// temperatures per segment; tension drives have none: nan). A failed step (or static state) ends the rows with a line
-/// "# ..." saying why. `after_row` (optional) is called after each written row.
-TrajectorySummary write_trajectory(BeamDynamics& dyn, const rod::RodModel& model,
-                                   const LoadsAt& loads_at, long long steps, long long output_every,
-                                   std::ostream& os,
-                                   const std::function<void(const BeamDynamics&)>& after_row = {});
 
 }  // namespace tcasim::beam_fe

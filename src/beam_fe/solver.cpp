@@ -295,11 +295,20 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state) 
   return solve(model, rod::Loads::from_model(model), options, state);
 }
 
-Summary solve(const rod::RodModel& model, const rod::Loads& loads_in, const Options& options,
+Summary solve(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
               State& state) {
+  return Solver(model, options).solve(loads, state);
+}
+
+Solver::Solver(const rod::RodModel& model, const Options& options)
+    : model_(&model), options_(options), disc_(model, options) {}
+
+Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
   const auto t0 = std::chrono::steady_clock::now();
+  const rod::RodModel& model = *model_;
+  const Options& options = options_;
+  const Discretization& disc = disc_;
   Summary summary;
-  const Discretization disc(model, options);  // validates the options
   const LoadCase loads = disc.load_case(loads_in);  // validates the loads
   if (!state_matches(disc, state)) state = disc.reference_state();
   auto finish = [&](Summary& s) -> Summary {
@@ -412,8 +421,15 @@ rod::Result make_result(const rod::RodModel& model, const Options& options, cons
   return make_result(model, rod::Loads::from_model(model), options, state, summary);
 }
 
-rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
-                        const Options& options, const State& state, const Summary& summary) {
+rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
+                        const State& state, const Summary& summary) {
+  return Solver(model, options).make_result(loads, state, summary);
+}
+
+rod::Result Solver::make_result(const rod::Loads& loads_in, const State& state,
+                                const Summary& summary) const {
+  const rod::RodModel& model = *model_;
+  const Options& options = options_;
   loads_in.validate(model);
   const rod::Loads loads = loads_in.applied(model);
   rod::Result res;
@@ -421,11 +437,7 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   res.method = "fe";
   // The mesh's element count (a body that varies along s, string anchors, spline knots or
   // extra knots: aligned to them, as Discretization's constructor builds it).
-  const bool plain_mesh = model.uniform_body() && model.interior_knots().empty() &&
-                          options.extra_knots_m.empty();
-  const int elements =
-      plain_mesh ? options.elements : Discretization(model, options).element_count();
-  res.discretization = {{"elements", elements}, {"order", options.order}};
+  res.discretization = {{"elements", disc_.element_count()}, {"order", options.order}};
   res.converged = summary.converged();
   res.status = to_string(summary.status);
   res.iterations = summary.iterations;
@@ -436,7 +448,7 @@ rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads_in,
   if (state.p_W_m.empty()) return res;
   res.tip_position_W_m = state.p_W_m.back();
   res.tip_R_WB = state.q_WB.back().toRotationMatrix();
-  const Discretization disc(model, options);
+  const Discretization& disc = disc_;
   const std::vector<double> lengths = disc.string_lengths(state);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     rod::ActuatorResult a;

@@ -57,9 +57,6 @@ struct DynamicsOptions {
   SpatialScheme scheme = SpatialScheme::kRk4;
 };
 
-/// The loads at time t [s] (a simulation's drive: constant, or time profiles).
-using LoadsAt = std::function<rod::Loads(double t_s)>;
-
 /// RK4 steps h along s must satisfy h kappa <= kMaxStepGrowth (kappa: spatial_growth_rate):
 /// coarser grids misrepresent the step's fast spatial modes and the time stepping goes
 /// unstable (measured on the steel cantilever: h kappa = 1.34 agrees with a fine grid to

@@ -9,9 +9,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "beam_fe/dynamics.hpp"
 #include "common/error.hpp"
-#include "cosserat/dynamics.hpp"
+#include "method/dynamics.hpp"
 
 namespace tcasim::crosscheck {
 
@@ -47,33 +46,6 @@ TimeGrid time_grid(const DynamicSettings& s) {
   return g;
 }
 
-/// The common stepping loop: `init` and `step(t)` return (converged, message); `record`
-/// appends the current state.
-template <class Dyn, class Init, class Step>
-void run_loop(const TimeGrid& g, double dt, DynamicRun& run, Dyn& dyn, Init init, Step step) {
-  auto record = [&] {
-    run.t_s.push_back(dyn.time_s());
-    run.tip_W_m.push_back(dyn.tip_position_W_m());
-    run.kinetic_J.push_back(dyn.kinetic_energy_J());
-    run.potential_J.push_back(dyn.potential_energy_J());
-  };
-  std::string why;
-  if (!init(why)) {
-    run.message = "static initial state did not converge: " + why;
-    return;
-  }
-  record();
-  for (long long k = 1; k <= g.steps; ++k) {
-    const double t = static_cast<double>(k) * dt;
-    if (!step(t, why)) {
-      run.message = fmt::format("time step to t = {:.9g} s failed: {}", t, why);
-      return;
-    }
-    if (k % g.every == 0 || k == g.steps) record();
-  }
-  run.ok = true;
-}
-
 beam_fe::DynamicsOptions fe_options(const DynamicSettings& s) {
   beam_fe::DynamicsOptions o;
   o.elements = s.elements;
@@ -86,6 +58,20 @@ beam_fe::DynamicsOptions fe_options(const DynamicSettings& s) {
   return o;
 }
 
+/// The options of `method` in the settings (the viscosity and tip mass are the scenario's in
+/// both methods).
+method::DynamicOptions dynamic_options(const rod::RodModel& model, DynamicMethod method,
+                                       const DynamicSettings& s) {
+  if (method == DynamicMethod::kFe) return fe_options(s);
+  cosserat::DynamicsOptions o;
+  o.dt_s = s.dt_s;
+  o.alpha = s.alpha;
+  o.tolerance = s.shooting_tolerance;
+  o.max_iterations = s.max_iterations;
+  o.steps = s.steps > 0 ? s.steps : cosserat::recommended_steps(model, o);
+  return o;
+}
+
 }  // namespace
 
 const char* to_string(DynamicMethod m) {
@@ -93,12 +79,7 @@ const char* to_string(DynamicMethod m) {
 }
 
 rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release_tip_load) {
-  rod::Loads l = t_s > 0.0 ? rod::Loads::at_time(model, t_s) : rod::Loads::from_model(model);
-  if (release_tip_load && t_s > 0.0) {
-    l.tip_force_W_N.setZero();
-    l.tip_moment_W_Nm.setZero();
-  }
-  return l;
+  return method::loads_at(model, t_s, release_tip_load);
 }
 
 std::string fe_dynamics_unsupported(const rod::RodModel& model) {
@@ -116,39 +97,23 @@ DynamicRun run_dynamics(const rod::RodModel& model, DynamicMethod method,
                         const DynamicSettings& s) {
   const TimeGrid g = time_grid(s);
   const bool release = s.release_tip_load;
-  auto loads = [&model, release](double t) { return dynamic_loads_at(model, t, release); };
+  const rod::LoadsAt loads = [&model, release](double t) {
+    return method::loads_at(model, t, release);
+  };
   DynamicRun run;
   run.method = method;
   const auto t0 = std::chrono::steady_clock::now();
-  if (method == DynamicMethod::kShooting) {
-    cosserat::DynamicsOptions o;
-    o.dt_s = s.dt_s;
-    o.alpha = s.alpha;
-    o.tolerance = s.shooting_tolerance;
-    o.max_iterations = s.max_iterations;
-    o.steps = s.steps > 0 ? s.steps : cosserat::recommended_steps(model, o);
-    cosserat::RodDynamics dyn(model, o);
-    run.grid_steps = dyn.steps();
-    auto outcome = [](const cosserat::DynamicsSummary& r, std::string& why) {
-      why = r.converged() ? "" : std::string(cosserat::to_string(r.status)) + ": " + r.message;
-      return r.converged();
-    };
-    run_loop(
-        g, s.dt_s, run, dyn,
-        [&](std::string& why) { return outcome(dyn.initialize(loads(0.0)), why); },
-        [&](double t, std::string& why) { return outcome(dyn.step(loads(t)), why); });
-  } else {
-    beam_fe::BeamDynamics dyn(model, fe_options(s));
-    run.grid_steps = s.elements;
-    auto outcome = [](const beam_fe::BeamDynamicsSummary& r, std::string& why) {
-      why = r.converged() ? "" : std::string(beam_fe::to_string(r.status)) + ": " + r.message;
-      return r.converged();
-    };
-    run_loop(
-        g, s.dt_s, run, dyn,
-        [&](std::string& why) { return outcome(dyn.initialize(loads(0.0)), why); },
-        [&](double t, std::string& why) { return outcome(dyn.step(loads(t)), why); });
-  }
+  method::DynamicSolver dyn(model, dynamic_options(model, method, s));
+  run.grid_steps = dyn.grid_size();
+  const rod::TrajectoryOutcome o =
+      method::run(dyn, loads, g.steps, g.every, [&run](const method::DynamicSolver& d) {
+        run.t_s.push_back(d.time_s());
+        run.tip_W_m.push_back(d.tip_position_W_m());
+        run.kinetic_J.push_back(d.kinetic_energy_J());
+        run.potential_J.push_back(d.potential_energy_J());
+      });
+  run.ok = o.ok;
+  run.message = o.message;
   run.wall_s = seconds_since(t0);
   return run;
 }

@@ -6,6 +6,7 @@
 /// the scenario file describes.
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "rod/model.hpp"
@@ -52,6 +53,9 @@ struct Loads {
   /// The same loads with load_scale folded in (load_scale 1; an exact copy when it is 1).
   Loads applied(const RodModel& model) const;
 };
+
+/// The loads at time t [s] (a simulation's drive: constant, or time profiles).
+using LoadsAt = std::function<Loads(double t_s)>;
 
 /// Characteristic force F_c [N] of the residual both methods report (docs/scenario-format.md
 /// "residual"), of loads.applied(model): F_c = max(min(E I_x, E I_y) / L^2, |F_e|, |M_e| / L,

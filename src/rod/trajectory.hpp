@@ -1,11 +1,9 @@
 #pragma once
-/// The trajectory of a simulation (docs/scenario-format.md "Trajectory file"): one row type,
-/// one CSV format and one time loop for both methods' dynamics (cosserat::RodDynamics,
-/// beam_fe::BeamDynamics), shared by `tcasim simulate` and tcasim.simulate (study/simulation.hpp).
-#include <fmt/format.h>
+/// The trajectory of a simulation (docs/scenario-format.md "Trajectory file"): one row type and
+/// one CSV format for both methods' dynamics (cosserat::RodDynamics, beam_fe::BeamDynamics);
+/// the one time loop that drives either is method::run (method/dynamics.hpp).
 
 #include <Eigen/Core>
-#include <functional>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -69,42 +67,5 @@ struct TrajectoryOutcome {
   /// ..." or "time step to t = T s failed (STATUS): ..."; the CSV's last line is "# " + it.
   std::string message;
 };
-
-/// The time loop of both dynamics: the static state under loads_at(0), then `steps` steps of
-/// dt_s to t = k dt_s; on_row(row_of(dyn)) at t = 0, every `output_every`-th step and the
-/// last; on_step(k) after each converged step. A failed solve ends the loop (the rows before
-/// it were delivered). Dyn: initialize(Loads) and step(Loads) return a summary with
-/// converged(), status (to_string found in Dyn's namespace) and message.
-template <class Dyn, class RowOf>
-TrajectoryOutcome run_trajectory(Dyn& dyn, const std::function<Loads(double)>& loads_at,
-                                 double dt_s, long long steps, long long output_every,
-                                 RowOf row_of,
-                                 const std::function<void(const TrajectoryRow&)>& on_row,
-                                 const std::function<void(long long)>& on_step = {}) {
-  TrajectoryOutcome out;
-  const auto init = dyn.initialize(loads_at(0.0));
-  if (!init.converged()) {
-    out.status = to_string(init.status);
-    out.message = fmt::format("static initial state did not converge ({}): {}", out.status,
-                              init.message);
-    return out;
-  }
-  on_row(row_of(dyn));
-  for (long long k = 1; k <= steps; ++k) {
-    const double t_new = k * dt_s;
-    const auto s = dyn.step(loads_at(t_new));
-    if (!s.converged()) {
-      out.status = to_string(s.status);
-      out.message =
-          fmt::format("time step to t = {:.9g} s failed ({}): {}", t_new, out.status, s.message);
-      return out;
-    }
-    out.steps_done = k;
-    if (k % output_every == 0 || k == steps) on_row(row_of(dyn));
-    if (on_step) on_step(k);
-  }
-  out.ok = true;
-  return out;
-}
 
 }  // namespace tcasim::rod

@@ -6,9 +6,8 @@
 #include <cmath>
 #include <memory>
 
-#include "beam_fe/dynamics.hpp"
 #include "common/error.hpp"
-#include "cosserat/dynamics.hpp"
+#include "method/dynamics.hpp"
 #include "rod/loads.hpp"
 
 namespace tcasim::study {
@@ -34,62 +33,19 @@ void require_count(long long value, const std::string& key, OptionNames style, l
   throw e;
 }
 
-rod::TrajectoryRow cosserat_row(const cosserat::RodDynamics& d) {
-  return rod::trajectory_row_of(d, d.probe_positions_W_m());
-}
-
-rod::Result cosserat_frame(const rod::RodModel& model, const cosserat::RodDynamics& d) {
-  rod::Result r;
-  r.scenario = model.name;
-  r.method = "cosserat";
-  r.converged = true;
-  const auto& grid = d.grid_states();
-  const auto& grid_s = d.grid_s_m();
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    r.centerline_s_m.push_back(grid_s[i]);
-    r.centerline_p_W_m.push_back(grid[i].head<3>());
-    r.centerline_R_WB.push_back(Eigen::Map<const Eigen::Matrix3d>(grid[i].data() + 3));
-  }
-  r.tip_position_W_m = d.tip_position_W_m();
-  r.tip_R_WB = d.tip_rotation_W();
-  return r;
-}
-
-rod::Result fe_frame(const rod::RodModel& model, const beam_fe::BeamDynamics& d) {
-  rod::Result r;
-  r.scenario = model.name;
-  r.method = "fe";
-  r.converged = true;
-  r.centerline_s_m = d.state().s_m;
-  r.centerline_p_W_m = d.state().p_W_m;
-  for (const auto& q : d.state().q_WB) r.centerline_R_WB.push_back(q.toRotationMatrix());
-  r.tip_position_W_m = d.tip_position_W_m();
-  r.tip_R_WB = d.tip_rotation_W();
-  return r;
-}
-
-/// The loop for one dynamics object: rows and frames to the hooks.
-template <class Dyn, class RowOf, class FrameOf>
-rod::TrajectoryOutcome run(Dyn& dyn, const rod::RodModel& model, const SimulationOptions& o,
-                           long long n_steps, const SimulationHooks& hooks, RowOf row_of,
-                           FrameOf frame_of) {
-  // The loads over time: the scenario's time profiles (tensions, temperatures, tip wrench)
-  // at t; the static state at t = 0 takes them at t = 0 (docs/scenario-format.md "Time
-  // profiles"). An electric drive's temperatures are the solver's thermal states.
+/// The time loop for one solver: rows and frames to the hooks.
+rod::TrajectoryOutcome run(method::DynamicSolver& dyn, const rod::RodModel& model,
+                           const SimulationOptions& o, long long n_steps,
+                           const SimulationHooks& hooks) {
   const bool release = o.release_tip_load;
-  const std::function<rod::Loads(double)> loads_at = [&model, release](double t) {
-    rod::Loads l = t > 0.0 ? rod::Loads::at_time(model, t) : rod::Loads::from_model(model);
-    if (release && t > 0.0) {
-      l.tip_force_W_N.setZero();
-      l.tip_moment_W_Nm.setZero();
-    }
-    return l;
+  const rod::LoadsAt loads_at = [&model, release](double t) {
+    return method::loads_at(model, t, release);
   };
-  return rod::run_trajectory(
-      dyn, loads_at, o.dt_s, n_steps, o.output_every, row_of,
-      [&](const rod::TrajectoryRow& row) {
-        if (hooks.on_row) hooks.on_row(row);
-        if (hooks.on_frame) hooks.on_frame(frame_of(model, dyn));
+  return method::run(
+      dyn, loads_at, n_steps, o.output_every,
+      [&](const method::DynamicSolver& d) {
+        if (hooks.on_row) hooks.on_row(d.row());
+        if (hooks.on_frame) hooks.on_frame(d.frame());
       },
       [&](long long k) {
         if (hooks.on_step) hooks.on_step(k, n_steps);
@@ -136,9 +92,9 @@ long long check_simulation_options(const SimulationOptions& o, OptionNames style
   return n_steps;
 }
 
-rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,
-                                const SimulationHooks& hooks, OptionNames style) {
-  const long long n_steps = check_simulation_options(o, style);
+method::DynamicOptions dynamic_options(const rod::RodModel& model, const SimulationOptions& o) {
+  // The options replace the scenario's viscosity (a constant or a profile along s) and tip
+  // mass only when given, in both methods.
   if (o.method == "fe") {
     beam_fe::DynamicsOptions fo;
     fo.elements = o.elements;
@@ -146,33 +102,30 @@ rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOpti
     fo.dt_s = o.dt_s;
     fo.rho_inf = o.rho_inf;
     fo.max_iterations = o.max_iterations;
-    // The option overrides the scenario's viscosity (a constant or a profile along s).
-    if (o.viscosity_Pa_s) fo.viscosity_Pa_s = *o.viscosity_Pa_s;
-    // The option overrides the scenario's tip mass only when given (as the shooting run's).
-    if (o.tip_mass_kg) fo.tip_mass_kg = *o.tip_mass_kg;
-    std::unique_ptr<beam_fe::BeamDynamics> dyn;
-    try {
-      dyn = std::make_unique<beam_fe::BeamDynamics>(model, fo);
-    } catch (const InputError& e) {
-      rethrow_named(e, style);
-    }
-    return run(*dyn, model, o, n_steps, hooks, beam_fe::trajectory_row, fe_frame);
+    fo.viscosity_Pa_s = o.viscosity_Pa_s;
+    fo.tip_mass_kg = o.tip_mass_kg;
+    return fo;
   }
   cosserat::DynamicsOptions co;
   co.dt_s = o.dt_s;
   co.alpha = o.alpha;
   co.steps = o.steps != 0 ? o.steps : cosserat::recommended_steps(model, co);
-  // The options override the scenario's keys only when given.
-  if (o.viscosity_Pa_s) co.viscosity_Pa_s = *o.viscosity_Pa_s;
-  if (o.tip_mass_kg) co.tip_mass_kg = *o.tip_mass_kg;
+  co.viscosity_Pa_s = o.viscosity_Pa_s;
+  co.tip_mass_kg = o.tip_mass_kg;
   co.max_iterations = o.max_iterations;
-  std::unique_ptr<cosserat::RodDynamics> dyn;
+  return co;
+}
+
+rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,
+                                const SimulationHooks& hooks, OptionNames style) {
+  const long long n_steps = check_simulation_options(o, style);
+  std::unique_ptr<method::DynamicSolver> dyn;
   try {
-    dyn = std::make_unique<cosserat::RodDynamics>(model, co);
+    dyn = std::make_unique<method::DynamicSolver>(model, dynamic_options(model, o));
   } catch (const InputError& e) {
     rethrow_named(e, style);
   }
-  return run(*dyn, model, o, n_steps, hooks, cosserat_row, cosserat_frame);
+  return run(*dyn, model, o, n_steps, hooks);
 }
 
 }  // namespace tcasim::study

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "method/dynamics.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "rod/trajectory.hpp"
@@ -55,6 +56,10 @@ struct SimulationHooks {
   std::function<void(long long done, long long total)> on_step;  ///< after each time step
 };
 
+/// The method and its settings of checked options `o`: the scenario's viscosity and tip mass
+/// unless the options replace them; the shooting grid cosserat::recommended_steps when
+/// `steps` is 0.
+method::DynamicOptions dynamic_options(const rod::RodModel& model, const SimulationOptions& o);
 /// Runs the simulation of `model` (checked options; InputError in `style` for what the
 /// dynamics refuses). A failed step is an outcome (ok false with the message), not an error.
 rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOptions& o,

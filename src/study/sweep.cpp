@@ -6,25 +6,14 @@ void solve_chunk(const rod::RodModel& model, const Sweep& sweep, IndexRange rang
                  const std::function<void(std::size_t, rod::Result&&)>& on_point) {
   // A cold start for every chunk: fresh loads, solver and state, whatever ran before.
   rod::Loads loads = rod::Loads::from_model(model);
-  std::optional<cosserat::ShootingSolver> shooting;
-  cosserat::Solution solution;
-  beam_fe::State fe_state;
-  if (sweep.shooting) shooting.emplace(model, *sweep.shooting);
+  method::StaticSolver solver(model, sweep.method);
   for (std::size_t k = range.begin; k < range.end; ++k) {
     if (sweep.by_temperature) {
       loads.set_temperature_K(sweep.actuator, sweep.values[k]);
     } else {
       loads.set_tension_N(sweep.actuator, sweep.values[k]);
     }
-    rod::Result r;
-    if (sweep.fe) {
-      const beam_fe::Summary summary = beam_fe::solve(model, loads, *sweep.fe, fe_state);
-      r = beam_fe::make_result(model, loads, *sweep.fe, fe_state, summary);
-    } else {
-      const cosserat::Summary summary = shooting->solve(loads, solution);
-      r = shooting->make_result(loads, solution, summary);
-    }
-    on_point(k, std::move(r));
+    on_point(k, solver.solve(loads));
   }
 }
 

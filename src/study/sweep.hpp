@@ -8,9 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "beam_fe/beam_fe.hpp"
 #include "common/parallel.hpp"
-#include "cosserat/shooting.hpp"
+#include "method/method.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 
@@ -28,9 +27,8 @@ struct Sweep {
   std::size_t actuator = 0;    ///< index into RodModel::actuators
   bool by_temperature = true;  ///< true: every segment's temperature [K]; false: tension [N]
   std::vector<double> values;  ///< temperatures [K] or tensions [N], in sweep order
-  /// Exactly one is set: the shooting solver's options or the FE solver's.
-  std::optional<cosserat::Options> shooting;
-  std::optional<beam_fe::Options> fe;
+  /// The method and its settings (method/method.hpp).
+  method::StaticOptions method = cosserat::Options{};
 };
 
 /// Solves the points range.begin ... range.end - 1 of `sweep`: cold at the first, each

@@ -7,6 +7,7 @@
 ///  - rod: rod models, scenario files, results;
 ///  - cosserat: the Cosserat-rod shooting solver, inverse kinetostatics and grasps;
 ///  - beam_fe: the geometrically exact beam finite-element solver;
+///  - method: either method by its options' type, with one call shape (static and dynamic);
 ///  - crosscheck: cross-checks of the two solvers and FE convergence studies;
 ///  - study: sweeps of one actuator with either solver, in cold-started chunks.
 #include "beam_fe/beam_fe.hpp"
@@ -16,6 +17,8 @@
 #include "cosserat/inverse.hpp"
 #include "cosserat/shooting.hpp"
 #include "crosscheck/crosscheck.hpp"
+#include "method/dynamics.hpp"
+#include "method/method.hpp"
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"

@@ -19,6 +19,7 @@
 #include "common/units.hpp"
 #include "cosserat/dynamics.hpp"
 #include "dynamics_tca_models.hpp"
+#include "method/dynamics.hpp"
 #include "rod/loads.hpp"
 #include "support/rod_models.hpp"
 #include "tca/thermal.hpp"
@@ -206,9 +207,9 @@ TEST(BeamDynamicsTca, TrajectoryCarriesTheTemperatures) {
     DynamicsOptions o;
     o.elements = 4;
     o.dt_s = 5e-3;
-    BeamDynamics d(m, o);
+    method::DynamicSolver d(m, o);
     std::ostringstream os;
-    const TrajectorySummary s = write_trajectory(
+    const rod::TrajectoryOutcome s = method::write_trajectory(
         d, m, [&m](double t) { return rod::Loads::at_time(m, t); }, 2, 1, os);
     ASSERT_TRUE(s.ok) << s.message;
     std::istringstream is(os.str());
@@ -222,7 +223,7 @@ TEST(BeamDynamicsTca, TrajectoryCarriesTheTemperatures) {
               "tca_temperature_degC");
     const auto last = [](const std::string& r) { return std::stod(r.substr(r.rfind(',') + 1)); };
     EXPECT_NEAR(last(row0), 25.0, 1e-9);  // ambient before the step
-    const double T1 = units::K_to_degC(d.segment_temperatures_K()[0][0]);
+    const double T1 = units::K_to_degC(d.row().temperatures_K[0][0]);
     EXPECT_GT(last(row1), 25.0);
     EXPECT_NEAR(last(row2), T1, 1e-8);
   }
@@ -230,9 +231,9 @@ TEST(BeamDynamicsTca, TrajectoryCarriesTheTemperatures) {
     const rod::RodModel m = scenario_model(scenario_json("segmented-tca"));
     DynamicsOptions o;
     o.elements = 4;
-    BeamDynamics d(m, o);
+    method::DynamicSolver d(m, o);
     std::ostringstream os;
-    ASSERT_TRUE(write_trajectory(
+    ASSERT_TRUE(method::write_trajectory(
                     d, m, [&m](double) { return rod::Loads::from_model(m); }, 1, 1, os)
                     .ok);
     EXPECT_NE(os.str().find("u-tca_0_temperature_degC,u-tca_1_temperature_degC\n0,"),

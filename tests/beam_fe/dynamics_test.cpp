@@ -273,37 +273,6 @@ TEST(BeamDynamics, FirstBendingFrequencyMatchesEulerBernoulli) {
   EXPECT_NEAR(f / f1, 1.0, 5e-4);
 }
 
-// The trajectory CSV: header of `tcasim simulate`, the row of t = 0, every output_every-th step
-// and the last; a failing step ends the rows with a "# time step ... failed" line.
-TEST(BeamDynamics, WritesTheTrajectoryCsv) {
-  const rod::RodModel m = steel_with_strings();
-  DynamicsOptions o;
-  o.elements = 4;
-  o.dt_s = 1e-3;
-  BeamDynamics d(m, o);
-  const LoadsAt released = [&m](double t) { return sag(m, t > 0.0 ? 0.0 : 0.02); };
-  std::ostringstream os;
-  const TrajectorySummary s = write_trajectory(d, m, released, 5, 2, os);
-  EXPECT_TRUE(s.ok) << s.message;
-  std::istringstream is(os.str());
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(is, line);) lines.push_back(line);
-  ASSERT_EQ(lines.size(), 5u);  // header, t = 0, steps 2, 4, 5
-  EXPECT_EQ(lines[0],
-            "t_s,tip_x_m,tip_y_m,tip_z_m,kinetic_energy_J,straight_tension_N,straight_elongation_m,"
-            "straight_temperature_degC,helix_tension_N,helix_elongation_m,helix_temperature_degC");
-  EXPECT_EQ(lines[1].substr(0, 2), "0,");
-  EXPECT_EQ(lines[4].substr(0, 6), "0.005,");
-  // One Newton iteration cannot absorb the release: the run stops with a reason.
-  o.max_iterations = 1;
-  BeamDynamics d1(m, o);
-  std::ostringstream os1;
-  const TrajectorySummary s1 = write_trajectory(d1, m, released, 5, 1, os1);
-  EXPECT_FALSE(s1.ok);
-  EXPECT_NE(os1.str().find("# time step to t = 0.001 s failed (max-iterations)"), std::string::npos)
-      << os1.str();
-}
-
 TEST(BeamDynamics, OptionsOutsideTheirRangeAreRefusedByName) {
   const rod::RodModel m = steel();
   DynamicsOptions o;

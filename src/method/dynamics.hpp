@@ -1,0 +1,97 @@
+#pragma once
+/// Rod dynamics by either method with one call shape (method/method.hpp says why this layer
+/// exists): cosserat::RodDynamics (shooting in s, BDF-alpha in t) or beam_fe::BeamDynamics
+/// (beam elements, Lie-group generalized-alpha), chosen by the options' type, and the one time
+/// loop that drives either (`tcasim simulate`, `compare --dynamic`, Python, the validation).
+#include <Eigen/Core>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "beam_fe/dynamics.hpp"
+#include "cosserat/dynamics.hpp"
+#include "rod/loads.hpp"
+#include "rod/model.hpp"
+#include "rod/result.hpp"
+#include "rod/trajectory.hpp"
+
+namespace tcasim::method {
+
+/// A dynamics method with its settings. Both take the scenario's viscosity and tip mass
+/// unless their options replace them (DynamicsOptions::viscosity_Pa_s, tip_mass_kg).
+using DynamicOptions = std::variant<cosserat::DynamicsOptions, beam_fe::DynamicsOptions>;
+
+/// "cosserat" or "fe".
+const char* name(const DynamicOptions& options);
+
+/// Outcome of the static initialization or of one time step, the same for both methods.
+struct StepSummary {
+  bool converged = false;
+  std::string status = "not_run";  ///< the method's status name (to_string of its summary)
+  int iterations = 0;              ///< Newton iterations
+  std::string message;             ///< why, when not converged
+};
+
+/// The dynamics of one model by either method: the static state at t = 0, then time steps of
+/// the options' dt_s. Holds a reference to the model, which must outlive it. The constructor
+/// validates the options (InputError naming `dynamics.<field>`) and refuses what the method
+/// cannot take (DomainError, e.g. a tip constraint).
+class DynamicSolver {
+ public:
+  DynamicSolver(const rod::RodModel& model, const DynamicOptions& options);
+  ~DynamicSolver();
+  DynamicSolver(const DynamicSolver&) = delete;
+  DynamicSolver& operator=(const DynamicSolver&) = delete;
+
+  /// Static equilibrium under `loads` (at rest); time is set to 0.
+  StepSummary initialize(const rod::Loads& loads);
+  /// Advances by one time step under `loads` (the loads at the new time).
+  StepSummary step(const rod::Loads& loads);
+
+  double time_s() const;
+  double time_step_s() const;
+  Eigen::Vector3d tip_position_W_m() const;
+  double kinetic_energy_J() const;
+  /// Potential energy of the current loads taken as constant [J] (each method's definition:
+  /// cosserat::RodDynamics / beam_fe::BeamDynamics::potential_energy_J).
+  double potential_energy_J() const;
+  /// The trajectory row of the current state (rod/trajectory.hpp), probes included.
+  rod::TrajectoryRow row() const;
+  /// The current shape as a result record (centerline, tip frame) for VTK frames.
+  rod::Result frame() const;
+  /// The spatial grid: shooting RK4 steps along s, or FE elements.
+  int grid_size() const;
+  const char* method() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The loads of the scenario at time t [s]: its time profiles (tensions, temperatures, tip
+/// wrench) at t, the static state at t = 0 (docs/scenario-format.md "Time profiles"); with
+/// `release_tip_load` the tip wrench acts at t = 0 only (a released cantilever). An electric
+/// drive's temperatures are each solver's thermal states.
+rod::Loads loads_at(const rod::RodModel& model, double t_s, bool release_tip_load);
+
+/// The one time loop of both methods: the static state under loads_at(0), then `steps` steps
+/// to t = k dt (dt = the solver's time step); on_output(solver) at t = 0, every
+/// `output_every`-th step and the last; on_step(k) after each converged step. A failed solve
+/// ends the loop (the outputs before it were delivered) with status and message:
+/// "static initial state did not converge (STATUS): ..." or "time step to t = T s failed
+/// (STATUS): ...".
+rod::TrajectoryOutcome run(DynamicSolver& solver, const rod::LoadsAt& loads_at, long long steps,
+                           long long output_every,
+                           const std::function<void(const DynamicSolver&)>& on_output,
+                           const std::function<void(long long)>& on_step = {});
+
+/// run() writing the trajectory CSV of docs/scenario-format.md "Trajectory file": the header,
+/// a row per output, and on failure a last line "# " + the message.
+rod::TrajectoryOutcome write_trajectory(DynamicSolver& solver, const rod::RodModel& model,
+                                        const rod::LoadsAt& loads_at, long long steps,
+                                        long long output_every, std::ostream& os);
+
+}  // namespace tcasim::method
