@@ -24,6 +24,7 @@
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
+#include "study/options.hpp"
 #include "study/sweep.hpp"
 
 namespace tcasim::app {
@@ -33,22 +34,22 @@ namespace {
 /// Exit code of a solve that ran but did not converge (the result file is still written).
 constexpr int kExitNotConverged = 4;
 
-struct IntegratorFlags {
-  int steps = 0;      // 0: solver default
-  double rtol = 0.0;  // 0: fixed steps
-  std::string scheme = "rk4";
-  bool no_planar = false;
-};
+using study::OptionNames;
 
-void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
-  auto* steps = cmd->add_option("--steps", f.steps,
-                                "cosserat: fixed steps of --scheme (even, >= 2; default 100)");
+/// The flags of the shooting integrator (absent when not given).
+void add_integrator_flags(CLI::App* cmd, study::ShootingChoice& f) {
+  auto* steps = cmd->add_option(
+      "--steps", f.steps,
+      fmt::format("cosserat: fixed steps of --scheme (even, in [2, {}]; default 100)",
+                  study::kMaxSteps));
   auto* scheme = cmd->add_option("--scheme", f.scheme,
                                  "cosserat: fixed-step scheme, rk4 (default, the paper's), rk6 or "
                                  "rk8 (sixth and eighth order: far fewer steps for the same "
                                  "error)");
-  auto* rtol = cmd->add_option("--rtol", f.rtol,
-                               "cosserat: use SUNDIALS CVODE with this relative tolerance");
+  auto* rtol = cmd->add_option(
+      "--rtol", f.rtol,
+      "cosserat: use SUNDIALS CVODE with this relative tolerance, in (0, 1) (default: fixed "
+      "steps)");
   steps->excludes(rtol);
   scheme->excludes(rtol);
   cmd->add_flag("--no-planar", f.no_planar,
@@ -56,75 +57,26 @@ void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
                 "twice the time; for cross-checks of the planar reduction)");
 }
 
-cosserat::Options cosserat_options(const IntegratorFlags& f) {
-  cosserat::Options o;
-  require(f.scheme == "rk4" || f.scheme == "rk6" || f.scheme == "rk8", "--scheme", f.scheme,
-          "must be rk4, rk6 or rk8");
-  o.integrator.method = f.scheme == "rk8"   ? ode::Method::kRk8
-                        : f.scheme == "rk6" ? ode::Method::kRk6
-                                            : ode::Method::kRk4;
-  if (f.rtol != 0.0) {
-    require(f.rtol > 0.0 && f.rtol < 1.0, "--rtol", f.rtol, "must be in (0, 1)");
-    o.integrator.method = ode::Method::kCvode;
-    o.integrator.relative_tolerance = f.rtol;
-    o.integrator.absolute_tolerance = f.rtol * 1e-3;
-  } else if (f.steps != 0) {
-    require(f.steps >= 2 && f.steps <= kMaxSteps && f.steps % 2 == 0, "--steps", f.steps,
-            fmt::format("must be an even number in [2, {}]", kMaxSteps));
-    o.integrator.steps = f.steps;
-  }
-  // RK8's coarse level: 2 steps are about as accurate as RK6's 4 (its Jacobians start the
-  // warm steps of sweeps).
-  if (o.integrator.method == ode::Method::kRk8) o.coarse_steps = 2;
-  o.planar_reduction = !f.no_planar;
-  return o;
-}
-
-struct FeFlags {
-  int elements = 16;
-  int order = 2;
-  std::string integration = "reduced";
-  std::string linear_solver = "klu";
-};
-
-void add_fe_flags(CLI::App* cmd, FeFlags& f) {
-  cmd->add_option("--elements", f.elements, "fe: number of elements (>= 1; default 16)");
+void add_fe_flags(CLI::App* cmd, study::FeChoice& f) {
+  cmd->add_option(
+      "--elements", f.elements,
+      fmt::format("fe: number of elements (in [1, {}]; default 16)", study::kMaxElements));
   cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)");
   cmd->add_option("--integration", f.integration,
                   "fe: Gauss rule, reduced (default, no locking) or full");
   cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
 }
 
-/// The FE options of the flags; a bad value is reported under its flag's name.
-beam_fe::Options fe_options(const FeFlags& f) {
-  require_count(f.elements, "--elements", 1, kMaxElements);
-  require(f.order == 1 || f.order == 2, "--order", f.order, "must be 1 or 2");
-  beam_fe::Options o;
-  o.elements = f.elements;
-  o.order = f.order;
-  try {
-    o.integration = beam_fe::parse_integration(f.integration);
-  } catch (const InputError& e) {
-    throw InputError("--integration", e.value(), e.rule());
-  }
-  try {
-    o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
-  } catch (const InputError& e) {
-    throw InputError("--linear-solver", e.value(), e.rule());
-  }
-  return o;
-}
-
 /// Solves the model's own actuation with the chosen method.
 rod::Result solve_with(const rod::RodModel& model, const std::string& method,
-                       const IntegratorFlags& integrator, const FeFlags& fe) {
+                       const study::ShootingChoice& integrator, const study::FeChoice& fe) {
   if (method == "fe") {
-    const beam_fe::Options options = fe_options(fe);
+    const beam_fe::Options options = study::fe_options(fe, OptionNames::kFlags);
     beam_fe::State state;
     const beam_fe::Summary summary = beam_fe::solve(model, options, state);
     return beam_fe::make_result(model, options, state, summary);
   }
-  return cosserat::solve(model, cosserat_options(integrator));
+  return cosserat::solve(model, study::shooting_options(integrator, OptionNames::kFlags));
 }
 
 }  // namespace
@@ -132,16 +84,15 @@ rod::Result solve_with(const rod::RodModel& model, const std::string& method,
 void add_solve_command(CLI::App& app) {
   struct Flags {
     std::string scenario, method = "cosserat", out, vtk, shape_csv;
-    IntegratorFlags integrator;
-    FeFlags fe;
+    study::ShootingChoice integrator;
+    study::FeChoice fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
       "solve", "Forward kinetostatics: solve one scenario and write a result file");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
   cmd->add_option("--method", flags->method,
-                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)")
-      ->check(CLI::IsMember({"cosserat", "fe"}));
+                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)");
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "result file (default: stdout)");
@@ -152,6 +103,7 @@ void add_solve_command(CLI::App& app) {
       "--shape-csv", flags->shape_csv,
       "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
   cmd->callback([flags] {
+    study::check_method(flags->method, OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     const rod::Result result = solve_with(model, flags->method, flags->integrator, flags->fe);
     rod::write_result(result, flags->out);
@@ -202,10 +154,10 @@ std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes) 
 void add_sweep_command(CLI::App& app) {
   struct Flags {
     std::string scenario, actuator, temperatures, tensions, out, method = "cosserat", shard;
-    int jobs = 1;
+    long long jobs = 1;
     long long chunk = kDefaultSweepChunk;
-    IntegratorFlags integrator;
-    FeFlags fe;
+    study::ShootingChoice integrator;
+    study::FeChoice fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("sweep",
@@ -220,8 +172,7 @@ void add_sweep_command(CLI::App& app) {
   temps->excludes(tens);
   cmd->add_option("--method", flags->method,
                   "solver: cosserat (shooting, default) or fe (geometrically exact beam elements); "
-                  "both warm-start each point from the previous one of its chunk")
-      ->check(CLI::IsMember({"cosserat", "fe"}));
+                  "both warm-start each point from the previous one of its chunk");
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--jobs", flags->jobs,
@@ -229,16 +180,17 @@ void add_sweep_command(CLI::App& app) {
                               "is the same, bit for bit, for every value",
                               kMaxJobs));
   cmd->add_option("--chunk", flags->chunk,
-                  fmt::format("points per chunk (default {}): each chunk starts cold and "
-                              "warm-starts its points in order; the unit of --jobs and --shard",
-                              kDefaultSweepChunk));
+                  fmt::format("points per chunk (1 to {}; default {}): each chunk starts cold "
+                              "and warm-starts its points in order; the unit of --jobs and "
+                              "--shard",
+                              study::kMaxSweepChunk, kDefaultSweepChunk));
   cmd->add_option("--shard", flags->shard,
                   "I/N: write only part I (0 to N-1) of N contiguous parts (whole chunks), with "
                   "the CSV header; the parts' rows in order are the full sweep's (job arrays)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
   cmd->callback([flags] {
-    require_count(flags->jobs, "--jobs", 1, kMaxJobs);
-    require_count(flags->chunk, "--chunk", 1, 1000000);
+    study::check_method(flags->method, OptionNames::kFlags);
+    study::check_sweep_jobs(flags->jobs, flags->chunk, OptionNames::kFlags);
     const Shard shard = flags->shard.empty() ? Shard{} : parse_shard(flags->shard, "--shard");
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     std::size_t index = model.actuators.size();
@@ -279,9 +231,9 @@ void add_sweep_command(CLI::App& app) {
     sweep.by_temperature = by_temperature;
     for (double v : values) sweep.values.push_back(by_temperature ? units::degC_to_K(v) : v);
     if (flags->method == "fe") {
-      sweep.fe = fe_options(flags->fe);
+      sweep.fe = study::fe_options(flags->fe, OptionNames::kFlags);
     } else {
-      sweep.shooting = cosserat_options(flags->integrator);
+      sweep.shooting = study::shooting_options(flags->integrator, OptionNames::kFlags);
       (void)cosserat::ShootingSolver(model, *sweep.shooting);  // InputError for bad options
     }
 
@@ -362,7 +314,8 @@ void add_sweep_command(CLI::App& app) {
         }
       }
     };
-    study::solve_chunks(model, sweep, chunks, mine, flags->jobs, on_point, on_chunk_done);
+    study::solve_chunks(model, sweep, chunks, mine, static_cast<int>(flags->jobs), on_point,
+                        on_chunk_done);
     out.commit();
     if (failures.load() > 0) {
       fmt::print(stderr,
