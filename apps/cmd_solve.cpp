@@ -219,17 +219,13 @@ void add_sweep_command(CLI::App& app) {
     const std::vector<double> values = by_temperature
                                            ? parse_range(flags->temperatures, "--temperatures-degC")
                                            : parse_range(flags->tensions, "--tensions-N");
-    if (by_temperature) {
-      for (double t : values) {
-        require(t > -units::kZeroCelsius_K, "--temperatures-degC", t, "is below absolute zero");
-      }
-    }
-
     // The sweep with either method's options, validated here (before any thread starts).
     study::Sweep sweep;
     sweep.actuator = index;
     sweep.by_temperature = by_temperature;
-    for (double v : values) sweep.values.push_back(by_temperature ? units::degC_to_K(v) : v);
+    sweep.values = by_temperature
+                       ? study::temperatures_K(values, "temperatures_degC", OptionNames::kFlags)
+                       : values;
     if (flags->method == "fe") {
       sweep.fe = study::fe_options(flags->fe, OptionNames::kFlags);
     } else {

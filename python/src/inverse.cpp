@@ -171,26 +171,12 @@ iterations, tip.position_m [m], converged, message.)");
           name = py::module_::import("os").attr("fspath")(source).cast<std::string>();
           tcas = rod::read_tcas(name);  // a scenario or a TCA file (tcasim.tcas/1)
         }
-        require(tension_N.has_value() != load_g.has_value(), "tension_N", "(with load_g)",
-                "give exactly one of tension_N and load_g");
+        const double t_N = study::tca_tension_N(tension_N, load_g, OptionNames::kPython);
+        const std::vector<double> temps_K =
+            study::temperatures_K(temperatures_degC, "temperatures_degC", OptionNames::kPython);
         // As `tcasim tca` (rod/tca_choice.hpp), the arguments under their Python names.
         const auto tca = rod::select_tca(tcas, name, {tca_id, material, f12_form},
                                          [](const std::string& key) { return key; });
-        double t_N = 0.0;
-        if (load_g) {
-          require(std::isfinite(*load_g) && *load_g >= 0.0, "load_g", *load_g,
-                  "must be >= 0 (a hanging mass)");
-          t_N = tca::hanging_load_tension_N(units::g_to_kg(*load_g));
-        } else {
-          require(std::isfinite(*tension_N), "tension_N", *tension_N, "must be finite");
-          t_N = *tension_N;
-        }
-        std::vector<double> temps_K;
-        for (const double t : temperatures_degC) {
-          require(std::isfinite(t) && t > -units::kZeroCelsius_K, "temperatures_degC", t,
-                  "must be above absolute zero");
-          temps_K.push_back(units::degC_to_K(t));
-        }
         std::vector<tca::CurvePoint> curve;
         {
           py::gil_scoped_release release;

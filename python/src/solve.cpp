@@ -420,12 +420,8 @@ the solver runs.)") +
         const std::vector<double> values =
             by_temperature ? number_list_arg(temperatures_degC, "temperatures_degC")
                            : number_list_arg(tensions_N, "tensions_N");
-        for (double v : values) {
-          require(std::isfinite(v), by_temperature ? "temperatures_degC" : "tensions_N", v,
-                  "must be finite");
-          if (by_temperature) {
-            require(v > -units::kZeroCelsius_K, "temperatures_degC", v, "is below absolute zero");
-          }
+        if (!by_temperature) {
+          for (double v : values) require(std::isfinite(v), "tensions_N", v, "must be finite");
         }
         const SolveOptions f = solve_options(steps, std::move(scheme), rtol, no_planar, elements,
                                              order, integration, linear_solver);
@@ -436,7 +432,9 @@ the solver runs.)") +
         study::Sweep sw;
         sw.actuator = index;
         sw.by_temperature = by_temperature;
-        for (double v : values) sw.values.push_back(by_temperature ? units::degC_to_K(v) : v);
+        sw.values = by_temperature
+                        ? study::temperatures_K(values, "temperatures_degC", OptionNames::kPython)
+                        : values;
         if (method == "fe") {
           sw.fe = study::fe_options(f.fe, OptionNames::kPython);
         } else {

@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "tca/curve.hpp"
 
 namespace tcasim::study {
 
@@ -90,6 +91,39 @@ beam_fe::Options fe_options(const FeChoice& c, OptionNames style) {
 void check_sweep_jobs(long long jobs, long long chunk, OptionNames style) {
   require_count(jobs, option_name("jobs", style), 1, kMaxJobs);
   require_count(chunk, option_name("chunk", style), 1, kMaxSweepChunk);
+}
+
+std::vector<double> temperatures_K(const std::vector<double>& temperatures_degC,
+                                   const std::string& key, OptionNames style) {
+  std::vector<double> out;
+  out.reserve(temperatures_degC.size());
+  for (const double t : temperatures_degC) {
+    require(std::isfinite(t) && t > -units::kZeroCelsius_K, option_name(key, style), t,
+            "must be above absolute zero (-273.15 degC)");
+    out.push_back(units::degC_to_K(t));
+  }
+  return out;
+}
+
+double tca_tension_N(const std::optional<double>& tension_N, const std::optional<double>& load_g,
+                     OptionNames style) {
+  const std::string tension_name = option_name("tension_N", style);
+  const std::string load_name = option_name("load_g", style);
+  if (!tension_N && !load_g) {
+    throw InputError(tension_name, "(missing)",
+                     fmt::format("is required unless {} is given (give exactly one)", load_name));
+  }
+  if (tension_N && load_g) {
+    throw InputError(tension_name, format_value(*tension_N),
+                     fmt::format("excludes {} (give exactly one)", load_name));
+  }
+  if (load_g) {
+    require(std::isfinite(*load_g) && *load_g >= 0.0, load_name, *load_g,
+            "must be >= 0 (a hanging mass)");
+    return tca::hanging_load_tension_N(units::g_to_kg(*load_g));
+  }
+  require(std::isfinite(*tension_N), tension_name, *tension_N, "must be finite");
+  return *tension_N;
 }
 
 double max_temperature_K(const std::optional<double>& t_degC, OptionNames style) {

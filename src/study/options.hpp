@@ -71,6 +71,16 @@ beam_fe::Options fe_options(const FeChoice& c, OptionNames style);
 /// Checks the parallel options of a sweep: jobs in [1, kMaxJobs], chunk in [1, kMaxSweepChunk].
 void check_sweep_jobs(long long jobs, long long chunk, OptionNames style);
 
+/// Temperatures [degC] of `key` (a sweep's or a TCA curve's) -> K; InputError naming the key
+/// and the first that is not finite or not above absolute zero.
+std::vector<double> temperatures_K(const std::vector<double>& temperatures_degC,
+                                   const std::string& key, OptionNames style);
+
+/// The constant tension [N] of a TCA curve (`tcasim tca`, tcasim.tca_curve): exactly one of
+/// tension_N [N] (finite) and load_g [g] (a hanging mass >= 0, F = -m g) must be given.
+double tca_tension_N(const std::optional<double>& tension_N, const std::optional<double>& load_g,
+                     OptionNames style);
+
 /// Checks a bound on the TCA temperature [degC] (above absolute zero) and returns it in K;
 /// NaN when absent (the material's maximum).
 double max_temperature_K(const std::optional<double>& t_degC, OptionNames style);
