@@ -97,8 +97,7 @@ void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions&
   try {
     shooting = xc::run_dynamics(model, xc::DynamicMethod::kShooting, s);
   } catch (const InputError& e) {
-    if (e.key() == "dynamics.steps") throw InputError("--steps", e.value(), e.rule());
-    throw;
+    study::rethrow_under_option_name(e, study::OptionNames::kFlags);
   }
   std::vector<xc::DynamicRun> fe;
   std::vector<std::string> labels;
@@ -174,15 +173,18 @@ void add_compare_command(CLI::App& app) {
       cmd->add_option("--steps", d.steps,
                       fmt::format("--dynamic: shooting RK4 steps along s, in [1, {}] (default: "
                                   "enough for the time step)",
-                                  kMaxSteps)),
+                                  kMaxSteps))
+          ->check(fits_64_bits()),
       cmd->add_option("--alpha", d.alpha,
                       "--dynamic: shooting BDF-alpha parameter in [-0.5, 0] (default -0.2)"),
       cmd->add_option("--rho-inf", d.rho_inf,
                       "--dynamic: FE generalized-alpha spectral radius in [0, 1] (default 0.9)"),
       cmd->add_option("--output-every", d.output_every,
-                      "--dynamic: write every K-th time step (default 1)"),
+                      "--dynamic: write every K-th time step (default 1)")
+          ->check(fits_64_bits()),
       cmd->add_option("--max-iterations", d.max_iterations,
-                      "--dynamic: Newton iterations per time step (default 30)"),
+                      "--dynamic: Newton iterations per time step (default 30)")
+          ->check(fits_64_bits()),
       cmd->add_flag("--release-tip-load", d.release_tip_load,
                     "--dynamic: the scenario's tip load acts at t = 0 only (a released "
                     "cantilever)")};

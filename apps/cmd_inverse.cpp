@@ -34,9 +34,7 @@ auto with_flag_names(F&& f) {
   try {
     return f();
   } catch (const InputError& e) {
-    if (e.key() == "max_temperature_degC")
-      throw InputError("--max-temperature-degC", e.value(), e.rule());
-    throw;
+    study::rethrow_under_option_name(e, OptionNames::kFlags);
   }
 }
 
@@ -108,7 +106,9 @@ void add_grasp_command(CLI::App& app) {
   cmd->add_option("--mass-g", flags->mass_g, "grasped mass [g]")->required();
   cmd->add_option("--friction", flags->friction, "friction coefficient mu finger/object")
       ->required();
-  cmd->add_option("--fingers", flags->fingers, "number of fingers n")->required();
+  cmd->add_option("--fingers", flags->fingers, "number of fingers n")
+      ->check(fits_64_bits())
+      ->required();
   cmd->add_option("--max-temperature-degC", flags->max_t_degC,
                   "upper temperature bound [degC] (default: the material's valid maximum)");
   cmd->add_option("--out", flags->out, "JSON file (default: stdout)");

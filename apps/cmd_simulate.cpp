@@ -62,17 +62,21 @@ void add_simulate_command(CLI::App& app) {
       cmd->add_option("--steps", opts.steps,
                       fmt::format("cosserat: RK4 steps along s, in [1, {}] (default: enough for "
                                   "the time step, >= 20)",
-                                  study::kMaxSteps));
-  auto* elements_flag = cmd->add_option(
-      "--elements", opts.elements,
-      fmt::format("fe: number of elements, in [1, {}] (default 16)", study::kMaxElements));
-  auto* order_flag =
-      cmd->add_option("--order", opts.order, "fe: element order, 1 or 2 (default 2)");
+                                  study::kMaxSteps))
+          ->check(fits_64_bits());
+  auto* elements_flag =
+      cmd->add_option(
+             "--elements", opts.elements,
+             fmt::format("fe: number of elements, in [1, {}] (default 16)", study::kMaxElements))
+          ->check(fits_64_bits());
+  auto* order_flag = cmd->add_option("--order", opts.order, "fe: element order, 1 or 2 (default 2)")
+                         ->check(fits_64_bits());
   auto* rho_inf_flag = cmd->add_option(
       "--rho-inf", opts.rho_inf,
       "fe: generalized-alpha spectral radius at infinite frequency in [0, 1] (default 0.9; "
       "1: no numerical dissipation)");
-  cmd->add_option("--output-every", opts.output_every, "write every K-th time step (default 1)");
+  cmd->add_option("--output-every", opts.output_every, "write every K-th time step (default 1)")
+      ->check(fits_64_bits());
   cmd->add_option(
       "--viscosity-Pa-s", opts.viscosity_Pa_s,
       "Kelvin-Voigt viscosity of the body [Pa s], constant along s (default: the scenario's "
@@ -81,7 +85,8 @@ void add_simulate_command(CLI::App& app) {
                   "point mass at the tip [kg] (default: the scenario's tip_mass_kg)");
   cmd->add_option("--max-iterations", opts.max_iterations,
                   fmt::format("Newton iterations per time step, in [1, {}] (default 30)",
-                              study::kMaxNewtonIterations));
+                              study::kMaxNewtonIterations))
+      ->check(fits_64_bits());
   cmd->add_flag("--release-tip-load", opts.release_tip_load,
                 "the scenario's tip load acts at t = 0 only (released at t = 0+: a released "
                 "cantilever)");

@@ -38,10 +38,12 @@ using study::OptionNames;
 
 /// The flags of the shooting integrator (absent when not given).
 void add_integrator_flags(CLI::App* cmd, study::ShootingChoice& f) {
-  auto* steps = cmd->add_option(
-      "--steps", f.steps,
-      fmt::format("cosserat: fixed steps of --scheme (even, in [2, {}]; default 100)",
-                  study::kMaxSteps));
+  auto* steps =
+      cmd->add_option(
+             "--steps", f.steps,
+             fmt::format("cosserat: fixed steps of --scheme (even, in [2, {}]; default 100)",
+                         study::kMaxSteps))
+          ->check(fits_64_bits());
   auto* scheme = cmd->add_option("--scheme", f.scheme,
                                  "cosserat: fixed-step scheme, rk4 (default, the paper's), rk6 or "
                                  "rk8 (sixth and eighth order: far fewer steps for the same "
@@ -59,9 +61,11 @@ void add_integrator_flags(CLI::App* cmd, study::ShootingChoice& f) {
 
 void add_fe_flags(CLI::App* cmd, study::FeChoice& f) {
   cmd->add_option(
-      "--elements", f.elements,
-      fmt::format("fe: number of elements (in [1, {}]; default 16)", study::kMaxElements));
-  cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)");
+         "--elements", f.elements,
+         fmt::format("fe: number of elements (in [1, {}]; default 16)", study::kMaxElements))
+      ->check(fits_64_bits());
+  cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)")
+      ->check(fits_64_bits());
   cmd->add_option("--integration", f.integration,
                   "fe: Gauss rule, reduced (default, no locking) or full");
   cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
@@ -178,12 +182,14 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--jobs", flags->jobs,
                   fmt::format("threads solving chunks in parallel (1 to {}; default 1); the CSV "
                               "is the same, bit for bit, for every value",
-                              kMaxJobs));
+                              kMaxJobs))
+      ->check(fits_64_bits());
   cmd->add_option("--chunk", flags->chunk,
                   fmt::format("points per chunk (1 to {}; default {}): each chunk starts cold "
                               "and warm-starts its points in order; the unit of --jobs and "
                               "--shard",
-                              study::kMaxSweepChunk, kDefaultSweepChunk));
+                              study::kMaxSweepChunk, kDefaultSweepChunk))
+      ->check(fits_64_bits());
   cmd->add_option("--shard", flags->shard,
                   "I/N: write only part I (0 to N-1) of N contiguous parts (whole chunks), with "
                   "the CSV header; the parts' rows in order are the full sweep's (job arrays)");

@@ -212,7 +212,8 @@ void register_simulate(py::module_& m) {
       py::arg("steps") = py::none(), py::arg("elements") = py::none(),
       py::arg("order") = py::none(), py::arg("rho_inf") = py::none(),
       py::arg("progress") = py::none(), py::arg("check") = true,
-      R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
+      fmt::format(
+          R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
 (the same numbers): the scenario's time profiles, viscosity and tip mass.
 
 scenario: a tcasim.Scenario, a dict or a file path.
@@ -220,14 +221,14 @@ method: "cosserat" (shooting, BDF-alpha in time) or "fe" (beam elements, Lie-gro
     generalized-alpha).
 duration_s: simulated time T [s] (> 0); dt_s: time step [s] (> 0), round(T / dt) steps.
 output_every: a row every K-th step (and t = 0 and the last step; default 1).
-max_iterations: Newton iterations per time step (default 30, in [1, 1000]).
+max_iterations: Newton iterations per time step (default 30, in [1, {}]).
 release_tip_load: the scenario's tip load acts at t = 0 only (a released cantilever).
 viscosity_Pa_s: Kelvin-Voigt viscosity [Pa s], constant along s (default: the scenario's).
 tip_mass_kg: point mass at the tip [kg] (default: the scenario's).
 alpha: cosserat, BDF-alpha parameter in [-0.5, 0] (default -0.2).
-steps: cosserat, RK4 steps along s, in [1, 100000] (default: enough for the time step,
+steps: cosserat, RK4 steps along s, in [1, {}] (default: enough for the time step,
     >= 20).
-elements, order: fe, number of elements in [1, 10000] (default 16) and their order, 1 or 2
+elements, order: fe, number of elements in [1, {}] (default 16) and their order, 1 or 2
     (default 2).
 rho_inf: fe, generalized-alpha spectral radius at infinite frequency in [0, 1] (default 0.9).
 progress: optional callable progress(done_steps, total_steps), called after each step.
@@ -236,7 +237,9 @@ check: raise tcasim.SolverError (the partial trajectory as .result) when the sta
     completed False.
 Returns a tcasim.Trajectory. An option out of range or of the wrong kind (an integer
 keyword given 2.5, a number beyond a double) raises tcasim.InputError naming it, with the
-rule of the same flag of `tcasim simulate`. The GIL is released while the simulation runs.)");
+rule of the same flag of `tcasim simulate`. The GIL is released while the simulation runs.)",
+          study::kMaxNewtonIterations, study::kMaxSteps, study::kMaxElements)
+          .c_str());
 }
 
 }  // namespace tcasim::python

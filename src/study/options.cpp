@@ -19,6 +19,23 @@ std::string option_name(const std::string& key, OptionNames style) {
   return flag;
 }
 
+void rethrow_under_option_name(const InputError& e, OptionNames style) {
+  // The keys of the library's option structs that are the front ends' options by the same
+  // name (cosserat::DynamicsOptions, beam_fe::DynamicsOptions, beam_fe::Options, the inverse's
+  // temperature bound).
+  static const char* const kOptionKeys[] = {
+      "steps",       "elements",       "order",          "rho_inf",     "alpha",
+      "dt_s",        "max_iterations", "viscosity_Pa_s", "tip_mass_kg", "max_temperature_degC",
+      "integration", "linear_solver"};
+  std::string key = e.key();
+  const std::string prefix = "dynamics.";
+  if (key.compare(0, prefix.size(), prefix) == 0) key = key.substr(prefix.size());
+  for (const char* option : kOptionKeys) {
+    if (key == option) throw InputError(option_name(key, style), e.value(), e.rule());
+  }
+  throw e;
+}
+
 void require_count(long long value, const std::string& name, long long lo, long long hi) {
   // The value as an integer (a double would round counts beyond 2^53).
   if (value < lo || value > hi) {
@@ -77,13 +94,9 @@ beam_fe::Options fe_options(const FeChoice& c, OptionNames style) {
   // beam_fe's parsers name the keys in snake_case (the Python names).
   try {
     o.integration = beam_fe::parse_integration(c.integration);
-  } catch (const InputError& e) {
-    throw InputError(name("integration"), e.value(), e.rule());
-  }
-  try {
     o.linear_solver = beam_fe::parse_linear_solver(c.linear_solver);
   } catch (const InputError& e) {
-    throw InputError(name("linear_solver"), e.value(), e.rule());
+    rethrow_under_option_name(e, style);
   }
   return o;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "beam_fe/beam_fe.hpp"
+#include "common/error.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/model.hpp"
 
@@ -37,6 +38,12 @@ inline constexpr long long kMaxSweepChunk = 1000000;
 inline constexpr long long kMaxTimeSteps = 100000000;
 /// Newton iterations per time step of the dynamics.
 inline constexpr int kMaxNewtonIterations = 1000;
+
+/// Rethrows an InputError a library raised for one of the front ends' options (key "steps",
+/// or "dynamics.steps" from the dynamics' options) under the option's name in `style`; any
+/// other error (a scenario key) unchanged. For the rules only the solver can check (a grid
+/// too coarse for the time step, a temperature bound below the material's range).
+[[noreturn]] void rethrow_under_option_name(const InputError& e, OptionNames style);
 
 /// Requires lo <= value <= hi for the count called `name` as shown to the user
 /// ("--steps = 1000000000 must be an integer in [1, 100000]").

@@ -15,16 +15,6 @@ namespace tcasim::study {
 
 namespace {
 
-/// An InputError of a dynamics constructor under the option's name.
-[[noreturn]] void rethrow_named(const InputError& e, OptionNames style) {
-  std::string key = e.key();
-  if (key.rfind("dynamics.", 0) == 0) key = key.substr(9);
-  if (key == "steps" || key == "rho_inf" || key == "elements" || key == "order") {
-    throw InputError(option_name(key, style), e.value(), e.rule());
-  }
-  throw e;
-}
-
 rod::TrajectoryRow cosserat_row(const cosserat::RodDynamics& d) {
   return rod::trajectory_row_of(d, d.probe_positions_W_m());
 }
@@ -141,7 +131,7 @@ rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOpti
     try {
       dyn = std::make_unique<beam_fe::BeamDynamics>(model, fo);
     } catch (const InputError& e) {
-      rethrow_named(e, style);
+      rethrow_under_option_name(e, style);
     }
     return run(*dyn, model, o, n_steps, hooks, beam_fe::trajectory_row, fe_frame);
   }
@@ -157,7 +147,7 @@ rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOpti
   try {
     dyn = std::make_unique<cosserat::RodDynamics>(model, co);
   } catch (const InputError& e) {
-    rethrow_named(e, style);
+    rethrow_under_option_name(e, style);
   }
   return run(*dyn, model, o, n_steps, hooks, cosserat_row, cosserat_frame);
 }
