@@ -11,7 +11,6 @@
 #include <utility>
 
 #include "common/error.hpp"
-#include "study/simulation.hpp"
 #include "common/grid.hpp"
 #include "rod/output_file.hpp"
 #include "rod/scenario.hpp"
@@ -36,27 +35,6 @@ double parse_number(const std::string& s, const std::string& flag, const std::st
 }
 
 }  // namespace
-
-std::vector<std::string> split_list(const std::string& text, char delimiter,
-                                    const std::string& flag, const std::string& rule) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find(delimiter, start);
-    items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    if (!items[k].empty()) continue;
-    if (items.size() == 1) throw InputError(flag, "\"\"", rule + ", not an empty text");
-    const char* where = k == 0 ? "a leading" : k + 1 == items.size() ? "a trailing" : "a doubled";
-    throw InputError(flag, text,
-                     fmt::format("{}: item {} of {} is empty ({} '{}')", rule, k + 1, items.size(),
-                                 where, delimiter));
-  }
-  return items;
-}
 
 std::vector<double> parse_range(const std::string& text, const std::string& flag) {
   const std::string rule = "must be a number or a range START:STOP:STEP";
@@ -89,30 +67,6 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) 
     v[k] = value;
   }
   return v;
-}
-
-std::vector<int> actuator_indices(const rod::RodModel& model, const std::string& names,
-                                  const std::string& flag) {
-  std::vector<int> out;
-  if (names.empty()) {
-    for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) out.push_back(i);
-    return out;
-  }
-  std::string all;
-  for (const auto& a : model.actuators) all += (all.empty() ? "" : ", ") + a.name;
-  for (const std::string& name :
-       split_list(names, ',', flag, "must be comma-separated actuator names")) {
-    int found = -1;
-    for (int i = 0; i < static_cast<int>(model.actuators.size()); ++i) {
-      if (model.actuators[i].name == name) found = i;
-    }
-    require(found >= 0, flag, names,
-            "names an actuator the scenario does not have: '" + name + "' (it has: " + all + ")");
-    require(std::find(out.begin(), out.end(), found) == out.end(), flag, names,
-            "names actuator '" + name + "' twice");
-    out.push_back(found);
-  }
-  return out;
 }
 
 std::shared_ptr<const tca::Tca> select_tca(const std::string& file, const std::string& id,
@@ -149,15 +103,6 @@ Shard parse_shard(const std::string& text, const std::string& flag) {
   require(s.index < s.count, flag, text,
           fmt::format("needs I < N: the {} shards are numbered 0 to {}", s.count, s.count - 1));
   return s;
-}
-
-long long require_time_flags(double duration_s, double dt_s, double alpha) {
-  return study::check_time_options(duration_s, dt_s, alpha, study::OptionNames::kFlags);
-}
-
-void require_count(long long value, const std::string& flag, long long lo, long long hi) {
-  require(value >= lo && value <= hi, flag, static_cast<double>(value),
-          fmt::format("must be an integer in [{}, {}]", lo, hi));
 }
 
 Output::Output(std::string path, std::string flag)

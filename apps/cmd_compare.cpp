@@ -17,6 +17,7 @@
 #include "crosscheck/crosscheck.hpp"
 #include "crosscheck/dynamic.hpp"
 #include "rod/scenario.hpp"
+#include "study/simulation.hpp"
 
 namespace tcasim::app {
 
@@ -70,35 +71,24 @@ void print_reference(std::FILE* f, const xc::Reference& ref, int steps) {
   fmt::print(f, "\n");
 }
 
-/// Flags of `tcasim compare --dynamic` (the static comparison's --elements and --orders give
-/// the FE meshes).
-struct DynamicFlags {
-  double duration_s = 0.0, dt_s = 0.0, alpha = -0.2, rho_inf = 0.9;
-  int steps = 0, output_every = 1, max_iterations = 30;
-  bool release_tip_load = false;
-};
-
-/// Time steps of one run: as `tcasim simulate` (1e8 steps are hours).
-
 /// `tcasim compare --dynamic`: one shooting run against the FE on each mesh; the per-time CSV
 /// to `out` (stdout when empty), the summary (max tip difference over time) to stderr.
-void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
+/// The flags are those of `tcasim simulate` (its options and rules, study/simulation.hpp;
+/// the static comparison's --elements and --orders give the FE meshes).
+void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions& f,
                      const std::vector<int>& elements, const std::vector<int>& orders,
                      const std::string& out_path) {
-  const long long n_steps = require_time_flags(f.duration_s, f.dt_s, f.alpha);
-  require(f.rho_inf >= 0.0 && f.rho_inf <= 1.0, "--rho-inf", f.rho_inf, "must be in [0, 1]");
-  require_count(f.output_every, "--output-every", 1, kMaxTimeSteps);
-  if (f.steps != 0) require_count(f.steps, "--steps", 1, kMaxSteps);
-  require_count(f.max_iterations, "--max-iterations", 1, 1000);
+  const long long n_steps = study::check_simulation_options(f, study::OptionNames::kFlags);
   xc::DynamicSettings s;
   s.duration_s = f.duration_s;
   s.dt_s = f.dt_s;
-  s.output_dt_s = f.output_every * f.dt_s;
+  s.output_dt_s = static_cast<double>(f.output_every) * f.dt_s;
   s.release_tip_load = f.release_tip_load;
-  s.steps = f.steps;
+  // Checked above: a given --steps is >= 1 (DynamicSettings' 0 is its own "recommended").
+  s.steps = f.steps ? static_cast<int>(*f.steps) : 0;
   s.alpha = f.alpha;
   s.rho_inf = f.rho_inf;
-  s.max_iterations = f.max_iterations;
+  s.max_iterations = static_cast<int>(f.max_iterations);
   // Refused before the shooting run spends its time.
   const std::string unsupported = xc::fe_dynamics_unsupported(model);
   if (!unsupported.empty()) throw DomainError(unsupported);
@@ -107,8 +97,7 @@ void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
   try {
     shooting = xc::run_dynamics(model, xc::DynamicMethod::kShooting, s);
   } catch (const InputError& e) {
-    if (e.key() == "dynamics.steps") throw InputError("--steps", e.value(), e.rule());
-    throw;
+    study::rethrow_under_option_name(e, study::OptionNames::kFlags);
   }
   std::vector<xc::DynamicRun> fe;
   std::vector<std::string> labels;
@@ -125,8 +114,8 @@ void compare_dynamic(const rod::RodModel& model, const DynamicFlags& f,
   out.stream() << xc::dynamic_csv(shooting, fe, labels);
   out.commit();
   fmt::print(stderr, "{}: {} s at dt {} s ({} steps); shooting: {} RK4 steps along s, {:.3f} s{}\n",
-             model.name, f.duration_s, f.dt_s, n_steps, shooting.grid_steps,
-             shooting.wall_s, shooting.ok ? "" : "; FAILED: " + shooting.message);
+             model.name, f.duration_s, f.dt_s, n_steps, shooting.grid_steps, shooting.wall_s,
+             shooting.ok ? "" : "; FAILED: " + shooting.message);
   fmt::print(stderr, "  {:>5} {:>8} {:>14} {:>11} {:>9} {:>8}\n", "order", "elements",
              "max |dtip| [m]", "/ L", "at t [s]", "fe [s]");
   bool all = shooting.ok;
@@ -156,7 +145,7 @@ void add_compare_command(CLI::App& app) {
     xc::ReferenceSettings reference;
     bool default_tolerances = false;
     bool dynamic = false;
-    DynamicFlags dyn;
+    study::SimulationOptions dyn;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("compare",
@@ -164,9 +153,9 @@ void add_compare_command(CLI::App& app) {
                                  "solution (tip, rotation, tension); --dynamic: the two dynamics "
                                  "methods over time (max tip difference)");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  auto* elements_flag = cmd->add_option(
-      "--elements", flags->elements,
-      "FE element counts, comma-separated (default 16,32,64,128; --dynamic: 32)");
+  auto* elements_flag =
+      cmd->add_option("--elements", flags->elements,
+                      "FE element counts, comma-separated (default 16,32,64,128; --dynamic: 32)");
   auto* orders_flag = cmd->add_option("--orders", flags->orders,
                                       "FE orders, comma-separated (default 2,1; --dynamic: 2)");
   auto* reference_flag = cmd->add_option("--reference-steps", flags->reference.steps,
@@ -177,20 +166,25 @@ void add_compare_command(CLI::App& app) {
   cmd->add_flag("--dynamic", flags->dynamic,
                 "compare the dynamics (tcasim simulate's two methods) from the static state at "
                 "t = 0: per-time CSV, max tip difference over time on stderr");
-  DynamicFlags& d = flags->dyn;
+  study::SimulationOptions& d = flags->dyn;
   const std::vector<CLI::Option*> dynamic_flags = {
       cmd->add_option("--duration-s", d.duration_s, "--dynamic: simulated time T [s] (> 0)"),
       cmd->add_option("--dt-s", d.dt_s, "--dynamic: time step of both methods [s] (> 0)"),
       cmd->add_option("--steps", d.steps,
-                      "--dynamic: shooting RK4 steps along s (default: enough for the time step)"),
+                      fmt::format("--dynamic: shooting RK4 steps along s, in [1, {}] (default: "
+                                  "enough for the time step)",
+                                  kMaxSteps))
+          ->check(fits_64_bits()),
       cmd->add_option("--alpha", d.alpha,
                       "--dynamic: shooting BDF-alpha parameter in [-0.5, 0] (default -0.2)"),
       cmd->add_option("--rho-inf", d.rho_inf,
                       "--dynamic: FE generalized-alpha spectral radius in [0, 1] (default 0.9)"),
       cmd->add_option("--output-every", d.output_every,
-                      "--dynamic: write every K-th time step (default 1)"),
+                      "--dynamic: write every K-th time step (default 1)")
+          ->check(fits_64_bits()),
       cmd->add_option("--max-iterations", d.max_iterations,
-                      "--dynamic: Newton iterations per time step (default 30)"),
+                      "--dynamic: Newton iterations per time step (default 30)")
+          ->check(fits_64_bits()),
       cmd->add_flag("--release-tip-load", d.release_tip_load,
                     "--dynamic: the scenario's tip load acts at t = 0 only (a released "
                     "cantilever)")};

@@ -4,9 +4,9 @@
 #include <fmt/ostream.h>
 
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "apps/cli_util.hpp"
@@ -17,6 +17,7 @@
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "study/inverse_document.hpp"
+#include "study/options.hpp"
 
 namespace tcasim::app {
 
@@ -25,13 +26,7 @@ namespace {
 /// Exit code of a solve that ran but did not converge (the output file is still written).
 constexpr int kExitNotConverged = 4;
 
-/// --max-temperature-degC -> K (NaN when absent: the material's maximum).
-double max_temperature_K(double t_degC, bool given) {
-  if (!given) return std::numeric_limits<double>::quiet_NaN();
-  require(std::isfinite(t_degC) && t_degC > -units::kZeroCelsius_K, "--max-temperature-degC",
-          t_degC, "must be above absolute zero");
-  return units::degC_to_K(t_degC);
-}
+using study::OptionNames;
 
 /// Runs f, re-issuing the library's bound error under the command-line flag's name.
 template <class F>
@@ -39,9 +34,7 @@ auto with_flag_names(F&& f) {
   try {
     return f();
   } catch (const InputError& e) {
-    if (e.key() == "max_temperature_degC")
-      throw InputError("--max-temperature-degC", e.value(), e.rule());
-    throw;
+    study::rethrow_under_option_name(e, OptionNames::kFlags);
   }
 }
 
@@ -56,7 +49,7 @@ void write_json(const nlohmann::json& j, const std::string& path) {
 void add_inverse_command(CLI::App& app) {
   struct Flags {
     std::string scenario, target, actuators, out;
-    double max_t_degC = 0.0;
+    std::optional<double> max_t_degC;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
@@ -68,11 +61,10 @@ void add_inverse_command(CLI::App& app) {
       ->required();
   cmd->add_option("--actuators", flags->actuators,
                   "comma-separated actuator names to adjust (default: all)");
-  auto* tmax =
-      cmd->add_option("--max-temperature-degC", flags->max_t_degC,
-                      "upper temperature bound [degC] (default: the material's valid maximum)");
+  cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                  "upper temperature bound [degC] (default: the material's valid maximum)");
   cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
-  cmd->callback([flags, tmax] {
+  cmd->callback([flags] {
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     if (model.tip_constraint) {
       throw InputError(
@@ -86,7 +78,7 @@ void add_inverse_command(CLI::App& app) {
     if (o.actuators.empty()) {
       throw InputError("--actuators", flags->actuators, "the scenario has no actuator to adjust");
     }
-    o.max_temperature_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
+    o.max_temperature_K = study::max_temperature_K(flags->max_t_degC, OptionNames::kFlags);
     const study::DocumentRun r =
         with_flag_names([&] { return study::inverse_document(model, target, o); });
     write_json(r.document, flags->out);
@@ -100,8 +92,9 @@ void add_inverse_command(CLI::App& app) {
 void add_grasp_command(CLI::App& app) {
   struct Flags {
     std::string scenario, out;
-    double mass_g = 0.0, friction = 0.0, max_t_degC = 0.0;
-    int fingers = 0;
+    double mass_g = 0.0, friction = 0.0;
+    long long fingers = 0;
+    std::optional<double> max_t_degC;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("grasp",
@@ -113,26 +106,24 @@ void add_grasp_command(CLI::App& app) {
   cmd->add_option("--mass-g", flags->mass_g, "grasped mass [g]")->required();
   cmd->add_option("--friction", flags->friction, "friction coefficient mu finger/object")
       ->required();
-  cmd->add_option("--fingers", flags->fingers, "number of fingers n")->required();
-  auto* tmax =
-      cmd->add_option("--max-temperature-degC", flags->max_t_degC,
-                      "upper temperature bound [degC] (default: the material's valid maximum)");
+  cmd->add_option("--fingers", flags->fingers, "number of fingers n")
+      ->check(fits_64_bits())
+      ->required();
+  cmd->add_option("--max-temperature-degC", flags->max_t_degC,
+                  "upper temperature bound [degC] (default: the material's valid maximum)");
   cmd->add_option("--out", flags->out, "JSON file (default: stdout)");
-  cmd->callback([flags, tmax] {
-    require(std::isfinite(flags->mass_g) && flags->mass_g > 0.0, "--mass-g", flags->mass_g,
-            "must be > 0");
-    require(std::isfinite(flags->friction) && flags->friction > 0.0, "--friction", flags->friction,
-            "must be > 0");
-    require(flags->fingers >= 1, "--fingers", flags->fingers, "must be an integer >= 1");
+  cmd->callback([flags] {
+    study::check_grasp_options(flags->mass_g, flags->friction, flags->fingers, OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     if (!model.tip_constraint || !model.tip_constraint->normal_W) {
       throw InputError(flags->scenario + ": tip_constraint.normal", "(missing)",
                        "`tcasim grasp` needs a tip_constraint with a \"normal\" (the contact "
                        "direction from the finger toward the object)");
     }
-    const double max_t_K = max_temperature_K(flags->max_t_degC, tmax->count() > 0);
+    const double max_t_K = study::max_temperature_K(flags->max_t_degC, OptionNames::kFlags);
     const study::DocumentRun r = with_flag_names([&] {
-      return study::grasp_document(model, flags->mass_g, flags->friction, flags->fingers, max_t_K);
+      return study::grasp_document(model, flags->mass_g, flags->friction,
+                                   static_cast<int>(flags->fingers), max_t_K);
     });
     write_json(r.document, flags->out);
     if (!r.converged) {

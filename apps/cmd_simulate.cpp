@@ -41,47 +41,53 @@ void write_pvd(const std::string& dir, const std::string& entries) {
 
 void add_simulate_command(CLI::App& app) {
   struct Flags {
-    std::string scenario, out, vtk_dir, method = "cosserat";
-    double duration_s = 0.0, dt_s = 0.0, alpha = -0.2, viscosity = 0.0, tip_mass = 0.0;
-    int output_every = 1, steps = 0, max_iterations = 30, elements = 16, order = 2;
-    double rho_inf = 0.9;
-    bool release_tip_load = false;
+    std::string scenario, out, vtk_dir;
+    // The options of study::simulate; the flags write into them directly.
+    study::SimulationOptions o;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
       "simulate", "Rod dynamics from the static state at t = 0: a trajectory CSV over time");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
-  cmd->add_option("--duration-s", flags->duration_s, "simulated time T [s] (> 0)")->required();
-  cmd->add_option("--dt-s", flags->dt_s, "time step [s] (> 0)")->required();
-  cmd->add_option("--method", flags->method,
+  study::SimulationOptions& opts = flags->o;  // bound to the flags
+  cmd->add_option("--duration-s", opts.duration_s, "simulated time T [s] (> 0)")->required();
+  cmd->add_option("--dt-s", opts.dt_s, "time step [s] (> 0)")->required();
+  cmd->add_option("--method", opts.method,
                   "solver: cosserat (shooting, BDF-alpha) or fe (beam elements, Lie-group "
-                  "generalized-alpha)")
-      ->check(CLI::IsMember({"cosserat", "fe"}));
+                  "generalized-alpha)");
   auto* alpha_flag = cmd->add_option(
-      "--alpha", flags->alpha,
+      "--alpha", opts.alpha,
       "cosserat: BDF-alpha parameter in [-0.5, 0] (default -0.2; 0: BDF2, -0.5: trapezoidal)");
   auto* steps_flag =
-      cmd->add_option("--steps", flags->steps,
-                      "cosserat: RK4 steps along s (default: enough for the time step, >= 20)");
+      cmd->add_option("--steps", opts.steps,
+                      fmt::format("cosserat: RK4 steps along s, in [1, {}] (default: enough for "
+                                  "the time step, >= 20)",
+                                  study::kMaxSteps))
+          ->check(fits_64_bits());
   auto* elements_flag =
-      cmd->add_option("--elements", flags->elements, "fe: number of elements (default 16)");
-  auto* order_flag =
-      cmd->add_option("--order", flags->order, "fe: element order, 1 or 2 (default 2)");
+      cmd->add_option(
+             "--elements", opts.elements,
+             fmt::format("fe: number of elements, in [1, {}] (default 16)", study::kMaxElements))
+          ->check(fits_64_bits());
+  auto* order_flag = cmd->add_option("--order", opts.order, "fe: element order, 1 or 2 (default 2)")
+                         ->check(fits_64_bits());
   auto* rho_inf_flag = cmd->add_option(
-      "--rho-inf", flags->rho_inf,
+      "--rho-inf", opts.rho_inf,
       "fe: generalized-alpha spectral radius at infinite frequency in [0, 1] (default 0.9; "
       "1: no numerical dissipation)");
-  cmd->add_option("--output-every", flags->output_every, "write every K-th time step (default 1)");
-  auto* viscosity_flag = cmd->add_option(
-      "--viscosity-Pa-s", flags->viscosity,
+  cmd->add_option("--output-every", opts.output_every, "write every K-th time step (default 1)")
+      ->check(fits_64_bits());
+  cmd->add_option(
+      "--viscosity-Pa-s", opts.viscosity_Pa_s,
       "Kelvin-Voigt viscosity of the body [Pa s], constant along s (default: the scenario's "
       "body.material.viscosity_Pa_s)");
-  auto* tip_mass_flag =
-      cmd->add_option("--tip-mass-kg", flags->tip_mass,
-                      "point mass at the tip [kg] (default: the scenario's tip_mass_kg)");
-  cmd->add_option("--max-iterations", flags->max_iterations,
-                  "Newton iterations per time step (default 30)");
-  cmd->add_flag("--release-tip-load", flags->release_tip_load,
+  cmd->add_option("--tip-mass-kg", opts.tip_mass_kg,
+                  "point mass at the tip [kg] (default: the scenario's tip_mass_kg)");
+  cmd->add_option("--max-iterations", opts.max_iterations,
+                  fmt::format("Newton iterations per time step, in [1, {}] (default 30)",
+                              study::kMaxNewtonIterations))
+      ->check(fits_64_bits());
+  cmd->add_flag("--release-tip-load", opts.release_tip_load,
                 "the scenario's tip load acts at t = 0 only (released at t = 0+: a released "
                 "cantilever)");
   cmd->add_option("--out", flags->out, "trajectory CSV file")->required();
@@ -89,32 +95,20 @@ void add_simulate_command(CLI::App& app) {
                   "also write DIR/trajectory.pvd with one .vtp per output time (ParaView)");
   cmd->callback([=] {
     const Flags& f = *flags;
+    const study::SimulationOptions& o = f.o;
+    study::check_method(o.method, study::OptionNames::kFlags);
     // A flag of the other method is refused, not ignored.
-    const bool fe = f.method == "fe";
-    for (const CLI::Option* o : {alpha_flag, steps_flag, elements_flag, order_flag, rho_inf_flag}) {
-      const bool fe_flag = o == elements_flag || o == order_flag || o == rho_inf_flag;
-      if (o->count() > 0 && fe_flag != fe) {
-        throw InputError(o->get_name(), o->as<std::string>(),
+    const bool fe = o.method == "fe";
+    for (const CLI::Option* flag :
+         {alpha_flag, steps_flag, elements_flag, order_flag, rho_inf_flag}) {
+      const bool fe_flag = flag == elements_flag || flag == order_flag || flag == rho_inf_flag;
+      if (flag->count() > 0 && fe_flag != fe) {
+        throw InputError(flag->get_name(), flag->as<std::string>(),
                          fe_flag ? "applies to --method fe only (cosserat: --steps, --alpha)"
                                  : "applies to --method cosserat only (fe: --elements, --order, "
                                    "--rho-inf)");
       }
     }
-    study::SimulationOptions o;
-    o.method = f.method;
-    o.duration_s = f.duration_s;
-    o.dt_s = f.dt_s;
-    o.output_every = f.output_every;
-    o.max_iterations = f.max_iterations;
-    o.release_tip_load = f.release_tip_load;
-    // The flags override the scenario's keys only when given.
-    if (viscosity_flag->count() > 0) o.viscosity_Pa_s = f.viscosity;
-    if (tip_mass_flag->count() > 0) o.tip_mass_kg = f.tip_mass;
-    o.alpha = f.alpha;
-    o.steps = f.steps;
-    o.elements = f.elements;
-    o.order = f.order;
-    o.rho_inf = f.rho_inf;
     const long long n_steps = study::check_simulation_options(o, study::OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(f.scenario);
 
@@ -134,9 +128,8 @@ void add_simulate_command(CLI::App& app) {
       hooks.on_frame = [&](const rod::Result& r) {
         const std::string name = fmt::format("frame_{:06d}.vtp", frame++);
         rod::write_vtp(model, r, (std::filesystem::path(f.vtk_dir) / name).string());
-        pvd += fmt::format(
-            "    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
-            row_t_s, name);
+        pvd += fmt::format("    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
+                           row_t_s, name);
       };
     }
     ProgressReporter progress(stderr, "tcasim simulate", static_cast<std::size_t>(n_steps),
@@ -144,8 +137,7 @@ void add_simulate_command(CLI::App& app) {
     hooks.on_step = [&progress](long long k, long long n) {
       if (n >= 1000) progress.update(static_cast<std::size_t>(k));
     };
-    const rod::TrajectoryOutcome s =
-        study::simulate(model, o, hooks, study::OptionNames::kFlags);
+    const rod::TrajectoryOutcome s = study::simulate(model, o, hooks, study::OptionNames::kFlags);
     if (!s.ok) os << "# " << s.message << '\n';
     out.commit();
     if (!f.vtk_dir.empty()) write_pvd(f.vtk_dir, pvd);

@@ -20,11 +20,11 @@
 #include "common/progress.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
-#include "method/method.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "rod/vtk.hpp"
+#include "study/options.hpp"
 #include "study/sweep.hpp"
 
 namespace tcasim::app {
@@ -34,22 +34,24 @@ namespace {
 /// Exit code of a solve that ran but did not converge (the result file is still written).
 constexpr int kExitNotConverged = 4;
 
-struct IntegratorFlags {
-  int steps = 0;      // 0: solver default
-  double rtol = 0.0;  // 0: fixed steps
-  std::string scheme = "rk4";
-  bool no_planar = false;
-};
+using study::OptionNames;
 
-void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
-  auto* steps = cmd->add_option("--steps", f.steps,
-                                "cosserat: fixed steps of --scheme (even, >= 2; default 100)");
+/// The flags of the shooting integrator (absent when not given).
+void add_integrator_flags(CLI::App* cmd, study::ShootingChoice& f) {
+  auto* steps =
+      cmd->add_option(
+             "--steps", f.steps,
+             fmt::format("cosserat: fixed steps of --scheme (even, in [2, {}]; default 100)",
+                         study::kMaxSteps))
+          ->check(fits_64_bits());
   auto* scheme = cmd->add_option("--scheme", f.scheme,
                                  "cosserat: fixed-step scheme, rk4 (default, the paper's), rk6 or "
                                  "rk8 (sixth and eighth order: far fewer steps for the same "
                                  "error)");
-  auto* rtol = cmd->add_option("--rtol", f.rtol,
-                               "cosserat: use SUNDIALS CVODE with this relative tolerance");
+  auto* rtol = cmd->add_option(
+      "--rtol", f.rtol,
+      "cosserat: use SUNDIALS CVODE with this relative tolerance, in (0, 1) (default: fixed "
+      "steps)");
   steps->excludes(rtol);
   scheme->excludes(rtol);
   cmd->add_flag("--no-planar", f.no_planar,
@@ -57,87 +59,33 @@ void add_integrator_flags(CLI::App* cmd, IntegratorFlags& f) {
                 "twice the time; for cross-checks of the planar reduction)");
 }
 
-cosserat::Options cosserat_options(const IntegratorFlags& f) {
-  cosserat::Options o;
-  require(f.scheme == "rk4" || f.scheme == "rk6" || f.scheme == "rk8", "--scheme", f.scheme,
-          "must be rk4, rk6 or rk8");
-  o.integrator.method = f.scheme == "rk8"   ? ode::Method::kRk8
-                        : f.scheme == "rk6" ? ode::Method::kRk6
-                                            : ode::Method::kRk4;
-  if (f.rtol != 0.0) {
-    require(f.rtol > 0.0 && f.rtol < 1.0, "--rtol", f.rtol, "must be in (0, 1)");
-    o.integrator.method = ode::Method::kCvode;
-    o.integrator.relative_tolerance = f.rtol;
-    o.integrator.absolute_tolerance = f.rtol * 1e-3;
-  } else if (f.steps != 0) {
-    require(f.steps >= 2 && f.steps <= kMaxSteps && f.steps % 2 == 0, "--steps", f.steps,
-            fmt::format("must be an even number in [2, {}]", kMaxSteps));
-    o.integrator.steps = f.steps;
-  }
-  // RK8's coarse level: 2 steps are about as accurate as RK6's 4 (its Jacobians start the
-  // warm steps of sweeps).
-  if (o.integrator.method == ode::Method::kRk8) o.coarse_steps = 2;
-  o.planar_reduction = !f.no_planar;
-  return o;
-}
-
-struct FeFlags {
-  int elements = 16;
-  int order = 2;
-  std::string integration = "reduced";
-  std::string linear_solver = "klu";
-};
-
-void add_fe_flags(CLI::App* cmd, FeFlags& f) {
-  cmd->add_option("--elements", f.elements, "fe: number of elements (>= 1; default 16)");
-  cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)");
+void add_fe_flags(CLI::App* cmd, study::FeChoice& f) {
+  cmd->add_option(
+         "--elements", f.elements,
+         fmt::format("fe: number of elements (in [1, {}]; default 16)", study::kMaxElements))
+      ->check(fits_64_bits());
+  cmd->add_option("--order", f.order, "fe: Lagrange order of the elements, 1 or 2 (default 2)")
+      ->check(fits_64_bits());
   cmd->add_option("--integration", f.integration,
                   "fe: Gauss rule, reduced (default, no locking) or full");
   cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
 }
 
-/// The FE options of the flags; a bad value is reported under its flag's name.
-beam_fe::Options fe_options(const FeFlags& f) {
-  require_count(f.elements, "--elements", 1, kMaxElements);
-  require(f.order == 1 || f.order == 2, "--order", f.order, "must be 1 or 2");
-  beam_fe::Options o;
-  o.elements = f.elements;
-  o.order = f.order;
-  try {
-    o.integration = beam_fe::parse_integration(f.integration);
-  } catch (const InputError& e) {
-    throw InputError("--integration", e.value(), e.rule());
-  }
-  try {
-    o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
-  } catch (const InputError& e) {
-    throw InputError("--linear-solver", e.value(), e.rule());
-  }
-  return o;
-}
-
-/// The method `--method` names with its flags (the command line's one choice of method).
-method::StaticOptions static_options(const std::string& method, const IntegratorFlags& integrator,
-                                     const FeFlags& fe) {
-  if (method == "fe") return fe_options(fe);
-  return cosserat_options(integrator);
-}
 
 }  // namespace
 
 void add_solve_command(CLI::App& app) {
   struct Flags {
     std::string scenario, method = "cosserat", out, vtk, shape_csv;
-    IntegratorFlags integrator;
-    FeFlags fe;
+    study::ShootingChoice integrator;
+    study::FeChoice fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand(
       "solve", "Forward kinetostatics: solve one scenario and write a result file");
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
   cmd->add_option("--method", flags->method,
-                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)")
-      ->check(CLI::IsMember({"cosserat", "fe"}));
+                  "solver: cosserat (shooting, default) or fe (geometrically exact beam elements)");
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--out", flags->out, "result file (default: stdout)");
@@ -148,9 +96,11 @@ void add_solve_command(CLI::App& app) {
       "--shape-csv", flags->shape_csv,
       "also write the centerline and actuator paths as CSV (curve,actuator_id,s_m,x_m,y_m,z_m)");
   cmd->callback([flags] {
+    study::check_method(flags->method, OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(flags->scenario);
-    const rod::Result result =
-        method::solve(model, static_options(flags->method, flags->integrator, flags->fe));
+    const rod::Result result = method::solve(
+        model, study::static_options(flags->method, flags->integrator, flags->fe,
+                                     OptionNames::kFlags));
     rod::write_result(result, flags->out);
     if (!flags->vtk.empty()) rod::write_vtp(model, result, flags->vtk);
     if (!flags->shape_csv.empty()) rod::write_shape_csv(model, result, flags->shape_csv);
@@ -199,10 +149,10 @@ std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes) 
 void add_sweep_command(CLI::App& app) {
   struct Flags {
     std::string scenario, actuator, temperatures, tensions, out, method = "cosserat", shard;
-    int jobs = 1;
+    long long jobs = 1;
     long long chunk = kDefaultSweepChunk;
-    IntegratorFlags integrator;
-    FeFlags fe;
+    study::ShootingChoice integrator;
+    study::FeChoice fe;
   };
   auto flags = std::make_shared<Flags>();
   auto* cmd = app.add_subcommand("sweep",
@@ -217,25 +167,27 @@ void add_sweep_command(CLI::App& app) {
   temps->excludes(tens);
   cmd->add_option("--method", flags->method,
                   "solver: cosserat (shooting, default) or fe (geometrically exact beam elements); "
-                  "both warm-start each point from the previous one of its chunk")
-      ->check(CLI::IsMember({"cosserat", "fe"}));
+                  "both warm-start each point from the previous one of its chunk");
   add_integrator_flags(cmd, flags->integrator);
   add_fe_flags(cmd, flags->fe);
   cmd->add_option("--jobs", flags->jobs,
                   fmt::format("threads solving chunks in parallel (1 to {}; default 1); the CSV "
                               "is the same, bit for bit, for every value",
-                              kMaxJobs));
+                              kMaxJobs))
+      ->check(fits_64_bits());
   cmd->add_option("--chunk", flags->chunk,
-                  fmt::format("points per chunk (default {}): each chunk starts cold and "
-                              "warm-starts its points in order; the unit of --jobs and --shard",
-                              kDefaultSweepChunk));
+                  fmt::format("points per chunk (1 to {}; default {}): each chunk starts cold "
+                              "and warm-starts its points in order; the unit of --jobs and "
+                              "--shard",
+                              study::kMaxSweepChunk, kDefaultSweepChunk))
+      ->check(fits_64_bits());
   cmd->add_option("--shard", flags->shard,
                   "I/N: write only part I (0 to N-1) of N contiguous parts (whole chunks), with "
                   "the CSV header; the parts' rows in order are the full sweep's (job arrays)");
   cmd->add_option("--out", flags->out, "CSV file (default: stdout)");
   cmd->callback([flags] {
-    require_count(flags->jobs, "--jobs", 1, kMaxJobs);
-    require_count(flags->chunk, "--chunk", 1, 1000000);
+    study::check_method(flags->method, OptionNames::kFlags);
+    study::check_sweep_jobs(flags->jobs, flags->chunk, OptionNames::kFlags);
     const Shard shard = flags->shard.empty() ? Shard{} : parse_shard(flags->shard, "--shard");
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     std::size_t index = model.actuators.size();
@@ -264,18 +216,15 @@ void add_sweep_command(CLI::App& app) {
     const std::vector<double> values = by_temperature
                                            ? parse_range(flags->temperatures, "--temperatures-degC")
                                            : parse_range(flags->tensions, "--tensions-N");
-    if (by_temperature) {
-      for (double t : values) {
-        require(t > -units::kZeroCelsius_K, "--temperatures-degC", t, "is below absolute zero");
-      }
-    }
-
     // The sweep with either method's options, validated here (before any thread starts).
     study::Sweep sweep;
     sweep.actuator = index;
     sweep.by_temperature = by_temperature;
-    for (double v : values) sweep.values.push_back(by_temperature ? units::degC_to_K(v) : v);
-    sweep.method = static_options(flags->method, flags->integrator, flags->fe);
+    sweep.values = by_temperature
+                       ? study::temperatures_K(values, "temperatures_degC", OptionNames::kFlags)
+                       : values;
+    sweep.method =
+        study::static_options(flags->method, flags->integrator, flags->fe, OptionNames::kFlags);
     (void)method::StaticSolver(model, sweep.method);  // InputError for bad options
 
     // Chunks of --chunk points; this shard's part of them (all without --shard).
@@ -355,7 +304,8 @@ void add_sweep_command(CLI::App& app) {
         }
       }
     };
-    study::solve_chunks(model, sweep, chunks, mine, flags->jobs, on_point, on_chunk_done);
+    study::solve_chunks(model, sweep, chunks, mine, static_cast<int>(flags->jobs), on_point,
+                        on_chunk_done);
     out.commit();
     if (failures.load() > 0) {
       fmt::print(stderr,

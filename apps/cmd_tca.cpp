@@ -18,6 +18,7 @@
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "rod/scenario.hpp"
+#include "study/options.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
 
@@ -31,24 +32,12 @@ struct TcaOptions {
 };
 
 void run_tca(const TcaOptions& o) {
-  // Both given is rejected by CLI11 (excludes); here: neither.
-  require(o.tension_N.has_value() || o.load_g.has_value(), "--tension-N", "(missing)",
-          "is required unless --load-g is given (give exactly one)");
+  // Both given is rejected by CLI11 (excludes); here: neither (and the values' rules).
+  const double tension_N = study::tca_tension_N(o.tension_N, o.load_g, study::OptionNames::kFlags);
   const auto tca = select_tca(o.file, o.id, o.material, o.f12_form);
   const std::vector<double> temps_degC = parse_range(o.temperatures, "--temperatures-degC");
-  for (const double t : temps_degC) {
-    require(t > -units::kZeroCelsius_K, "--temperatures-degC", o.temperatures,
-            "contains a temperature below absolute zero");
-  }
-  std::vector<double> temps_K;
-  for (const double t : temps_degC) temps_K.push_back(units::degC_to_K(t));
-  double tension_N = 0.0;
-  if (o.load_g) {
-    require(*o.load_g >= 0.0, "--load-g", *o.load_g, "must be >= 0 (a hanging mass)");
-    tension_N = tca::hanging_load_tension_N(units::g_to_kg(*o.load_g));
-  } else {
-    tension_N = *o.tension_N;
-  }
+  const std::vector<double> temps_K =
+      study::temperatures_K(temps_degC, "temperatures_degC", study::OptionNames::kFlags);
   const auto curve = tca::elongation_curve(*tca, tension_N, temps_K);
 
   Output output(o.out);

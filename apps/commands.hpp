@@ -3,8 +3,26 @@
 /// subcommand on the application; its callback does the work and throws on error
 /// (main turns every exception into a message and a non-zero exit code).
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdlib>
+#include <string>
 
 namespace tcasim::app {
+
+/// A check on the text of an integer flag: CLI11 2.1 reads an integer beyond 64 bits as the
+/// nearest bound without a word, so the flag's rule would report a number the user did not
+/// give. Refused here instead (a parse error: exit code 2, naming the flag and the text).
+inline CLI::Validator fits_64_bits() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        (void)std::strtoll(text.c_str(), &end, 0);
+        if (errno != ERANGE) return {};
+        return text + " must be an integer in [-9223372036854775808, 9223372036854775807]";
+      },
+      "");
+}
 
 /// `tcasim tca FILE.json [--tca ID] (--tension-N F | --load-g M) --temperatures-degC A:B:S`
 void add_tca_command(CLI::App& app);

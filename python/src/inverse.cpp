@@ -1,6 +1,6 @@
 // tcasim.inverse, tcasim.grasp and tcasim.tca_curve: the documents of `tcasim inverse` and
-// `tcasim grasp` (built by study/inverse_document.hpp for both) and the table of `tcasim tca`
-// (apps/cmd_tca.cpp), built by the same library calls.
+// `tcasim grasp` (built by study/inverse_document.hpp for both) and the table of `tcasim tca`,
+// built by the same library calls.
 #include "cosserat/inverse.hpp"
 
 #include <fmt/format.h>
@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli_util.hpp"
 #include "bindings.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
@@ -24,6 +23,7 @@
 #include "rod/scenario.hpp"
 #include "rod/tca_choice.hpp"
 #include "study/inverse_document.hpp"
+#include "study/options.hpp"
 #include "tca/curve.hpp"
 #include "tca/tca.hpp"
 
@@ -31,12 +31,22 @@ namespace tcasim::python {
 
 namespace {
 
-/// max_temperature_degC -> K (NaN when absent: the material's maximum).
-double max_temperature_K(std::optional<double> t_degC) {
-  if (!t_degC) return std::numeric_limits<double>::quiet_NaN();
-  require(std::isfinite(*t_degC) && *t_degC > -units::kZeroCelsius_K, "max_temperature_degC",
-          *t_degC, "must be above absolute zero");
-  return units::degC_to_K(*t_degC);
+using study::OptionNames;
+
+/// max_temperature_degC -> K (NaN when None: the material's maximum).
+double max_temperature_K(const py::object& t_degC) {
+  return study::max_temperature_K(optional_number_arg(t_degC, "max_temperature_degC"),
+                                  OptionNames::kPython);
+}
+
+/// target_m: three finite numbers (x, y, z) [m].
+Eigen::Vector3d target_vector(const py::object& target_m) {
+  const std::vector<double> v = number_list_arg(target_m, "target_m");
+  const auto text = [&] { return py::repr(target_m).cast<std::string>(); };
+  if (v.size() != 3) throw InputError("target_m", text(), "must be three finite numbers");
+  const Eigen::Vector3d t(v[0], v[1], v[2]);
+  if (!t.allFinite()) throw InputError("target_m", text(), "must be three finite numbers");
+  return t;
 }
 
 /// Actuator names (a list, or one comma-separated string; None: all) -> model indices.
@@ -50,11 +60,7 @@ std::vector<int> actuator_list(const rod::RodModel& model, const py::object& nam
         text += (text.empty() ? "" : ",") + n;
     }
   }
-  try {
-    return app::actuator_indices(model, text, "actuators");
-  } catch (const InputError& e) {
-    throw InputError("actuators", e.value(), e.rule());
-  }
+  return study::actuator_indices(model, text, "actuators");
 }
 
 /// The document as a dict; tcasim.SolverError carrying it when `check` and not converged.
@@ -72,8 +78,8 @@ py::object checked(const study::DocumentRun& r, bool check, const std::string& w
 void register_inverse(py::module_& m) {
   m.def(
       "inverse",
-      [](py::object scenario, const Eigen::Vector3d& target_m, py::object actuators,
-         std::optional<double> max_temperature_degC, bool check) {
+      [](py::object scenario, py::object target_arg, py::object actuators,
+         py::object max_temperature_degC, bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         const rod::RodModel& model = *sc->model;
         if (model.tip_constraint) {
@@ -81,7 +87,7 @@ void register_inverse(py::module_& m) {
                            "must be absent for tcasim.inverse (it moves a free tip; use "
                            "tcasim.grasp for a blocked tip)");
         }
-        require(target_m.allFinite(), "target_m", "(non-finite)", "must be three finite numbers");
+        const Eigen::Vector3d target_m = target_vector(target_arg);
         cosserat::InverseOptions o;
         o.actuators = actuator_list(model, actuators);
         if (o.actuators.empty()) {
@@ -113,11 +119,12 @@ contact_force_N [N]) or tension_N [N].)");
 
   m.def(
       "grasp",
-      [](py::object scenario, double mass_g, double friction, int fingers,
-         std::optional<double> max_temperature_degC, bool check) {
-        require(std::isfinite(mass_g) && mass_g > 0.0, "mass_g", mass_g, "must be > 0");
-        require(std::isfinite(friction) && friction > 0.0, "friction", friction, "must be > 0");
-        require(fingers >= 1, "fingers", fingers, "must be an integer >= 1");
+      [](py::object scenario, py::object mass_arg, py::object friction_arg, py::object fingers_arg,
+         py::object max_temperature_degC, bool check) {
+        const double mass_g = number_arg(mass_arg, "mass_g");
+        const double friction = number_arg(friction_arg, "friction");
+        const long long fingers = integer_arg(fingers_arg, "fingers");
+        study::check_grasp_options(mass_g, friction, fingers, OptionNames::kPython);
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         const rod::RodModel& model = *sc->model;
         if (!model.tip_constraint || !model.tip_constraint->normal_W) {
@@ -129,8 +136,8 @@ contact_force_N [N]) or tension_N [N].)");
         study::DocumentRun r;
         {
           py::gil_scoped_release release;
-          r = study::grasp_document(model, mass_g, friction, fingers,
-                                    max_t_K);  // as `tcasim grasp`
+          // As `tcasim grasp`.
+          r = study::grasp_document(model, mass_g, friction, static_cast<int>(fingers), max_t_K);
         }
         return checked(r, check, "grasp");
       },
@@ -147,9 +154,13 @@ iterations, tip.position_m [m], converged, message.)");
 
   m.def(
       "tca_curve",
-      [](py::object source, std::vector<double> temperatures_degC, std::optional<double> tension_N,
-         std::optional<double> load_g, std::optional<std::string> tca_id,
+      [](py::object source, py::object temperatures_arg, py::object tension_arg,
+         py::object load_arg, std::optional<std::string> tca_id,
          std::optional<std::string> material, std::optional<std::string> f12_form) {
+        const std::vector<double> temperatures_degC =
+            number_list_arg(temperatures_arg, "temperatures_degC");
+        const std::optional<double> tension_N = optional_number_arg(tension_arg, "tension_N");
+        const std::optional<double> load_g = optional_number_arg(load_arg, "load_g");
         rod::TcaMap tcas;
         std::string name;
         if (py::isinstance<Scenario>(source) || PyDict_Check(source.ptr())) {
@@ -160,26 +171,12 @@ iterations, tip.position_m [m], converged, message.)");
           name = py::module_::import("os").attr("fspath")(source).cast<std::string>();
           tcas = rod::read_tcas(name);  // a scenario or a TCA file (tcasim.tcas/1)
         }
-        require(tension_N.has_value() != load_g.has_value(), "tension_N", "(with load_g)",
-                "give exactly one of tension_N and load_g");
+        const double t_N = study::tca_tension_N(tension_N, load_g, OptionNames::kPython);
+        const std::vector<double> temps_K =
+            study::temperatures_K(temperatures_degC, "temperatures_degC", OptionNames::kPython);
         // As `tcasim tca` (rod/tca_choice.hpp), the arguments under their Python names.
         const auto tca = rod::select_tca(tcas, name, {tca_id, material, f12_form},
                                          [](const std::string& key) { return key; });
-        double t_N = 0.0;
-        if (load_g) {
-          require(std::isfinite(*load_g) && *load_g >= 0.0, "load_g", *load_g,
-                  "must be >= 0 (a hanging mass)");
-          t_N = tca::hanging_load_tension_N(units::g_to_kg(*load_g));
-        } else {
-          require(std::isfinite(*tension_N), "tension_N", *tension_N, "must be finite");
-          t_N = *tension_N;
-        }
-        std::vector<double> temps_K;
-        for (const double t : temperatures_degC) {
-          require(std::isfinite(t) && t > -units::kZeroCelsius_K, "temperatures_degC", t,
-                  "must be above absolute zero");
-          temps_K.push_back(units::degC_to_K(t));
-        }
         std::vector<tca::CurvePoint> curve;
         {
           py::gil_scoped_release release;

@@ -1,6 +1,7 @@
-// tcasim.simulate: rod dynamics over time with the options of `tcasim simulate`
-// (apps/cmd_simulate.cpp) under the flags' names in snake_case, by the same library call
-// (study::simulate), so the trajectory is the command's, to the last digit.
+// tcasim.simulate: rod dynamics over time with the options of `tcasim simulate` under the
+// flags' names in snake_case, checked and run by the same library calls
+// (study::check_simulation_options, study::simulate), so the trajectory is the command's, to
+// the last digit.
 #include <fmt/format.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -68,12 +69,9 @@ struct Trajectory {
 struct CallbackRaised {};
 
 /// An option of the other method is refused, not ignored (as the command line).
-template <class T>
-void refuse_for(const std::optional<T>& v, const char* key, bool wrong_method, bool fe_option) {
-  if (!v || !wrong_method) return;
-  std::ostringstream value;
-  value << *v;
-  throw InputError(key, value.str(),
+void refuse_for(const py::object& v, const char* key, bool wrong_method, bool fe_option) {
+  if (v.is_none() || !wrong_method) return;
+  throw InputError(key, py::str(v).cast<std::string>(),
                    fe_option ? "applies to method=\"fe\" only (cosserat: steps, alpha)"
                              : "applies to method=\"cosserat\" only (fe: elements, order, "
                                "rho_inf)");
@@ -127,13 +125,15 @@ void register_simulate(py::module_& m) {
             return t.column(t.column_index(name));
           },
           "A column by its CSV name, shape (n,).")
-      .def("__len__", [](const Trajectory& t) { return t.rows.size(); }, "Number of rows.")
+      .def(
+          "__len__", [](const Trajectory& t) { return t.rows.size(); }, "Number of rows.")
       .def(
           "to_csv",
           [](const Trajectory& t, py::object path) -> py::object {
             const std::string text = t.csv();
             if (path.is_none()) return py::str(text);
-            const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+            const std::string p =
+                py::module_::import("os").attr("fspath")(path).cast<std::string>();
             std::ofstream f(p, std::ios::binary);
             f << text;
             if (!f) throw InputError("path", p, "could not be written");
@@ -147,13 +147,13 @@ void register_simulate(py::module_& m) {
 
   m.def(
       "simulate",
-      [](py::object scenario, const std::string& method, double duration_s, double dt_s,
-         long long output_every, int max_iterations, bool release_tip_load,
-         std::optional<double> viscosity_Pa_s, std::optional<double> tip_mass_kg,
-         std::optional<double> alpha, std::optional<int> steps, std::optional<int> elements,
-         std::optional<int> order, std::optional<double> rho_inf, py::object progress,
+      [](py::object scenario, const std::string& method, py::object duration_s, py::object dt_s,
+         py::object output_every, py::object max_iterations, bool release_tip_load,
+         py::object viscosity_Pa_s, py::object tip_mass_kg, py::object alpha, py::object steps,
+         py::object elements, py::object order, py::object rho_inf, py::object progress,
          bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
+        study::check_method(method, study::OptionNames::kPython);
         const bool fe = method == "fe";
         refuse_for(alpha, "alpha", fe, false);
         refuse_for(steps, "steps", fe, false);
@@ -162,18 +162,19 @@ void register_simulate(py::module_& m) {
         refuse_for(rho_inf, "rho_inf", !fe, true);
         study::SimulationOptions o;
         o.method = method;
-        o.duration_s = duration_s;
-        o.dt_s = dt_s;
-        o.output_every = output_every;
-        o.max_iterations = max_iterations;
+        o.duration_s = number_arg(duration_s, "duration_s");
+        o.dt_s = number_arg(dt_s, "dt_s");
+        o.output_every = integer_arg(output_every, "output_every");
+        o.max_iterations = integer_arg(max_iterations, "max_iterations");
         o.release_tip_load = release_tip_load;
-        o.viscosity_Pa_s = viscosity_Pa_s;
-        o.tip_mass_kg = tip_mass_kg;
-        if (alpha) o.alpha = *alpha;
-        if (steps) o.steps = *steps;
-        if (elements) o.elements = *elements;
-        if (order) o.order = *order;
-        if (rho_inf) o.rho_inf = *rho_inf;
+        o.viscosity_Pa_s = optional_number_arg(viscosity_Pa_s, "viscosity_Pa_s");
+        o.tip_mass_kg = optional_number_arg(tip_mass_kg, "tip_mass_kg");
+        // The keywords override the defaults of SimulationOptions only when given.
+        if (!alpha.is_none()) o.alpha = number_arg(alpha, "alpha");
+        o.steps = optional_integer_arg(steps, "steps");
+        if (!elements.is_none()) o.elements = integer_arg(elements, "elements");
+        if (!order.is_none()) o.order = integer_arg(order, "order");
+        if (!rho_inf.is_none()) o.rho_inf = number_arg(rho_inf, "rho_inf");
         study::check_simulation_options(o, study::OptionNames::kPython);
 
         auto traj = std::make_shared<Trajectory>();
@@ -211,7 +212,8 @@ void register_simulate(py::module_& m) {
       py::arg("steps") = py::none(), py::arg("elements") = py::none(),
       py::arg("order") = py::none(), py::arg("rho_inf") = py::none(),
       py::arg("progress") = py::none(), py::arg("check") = true,
-      R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
+      fmt::format(
+          R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
 (the same numbers): the scenario's time profiles, viscosity and tip mass.
 
 scenario: a tcasim.Scenario, a dict or a file path.
@@ -219,20 +221,25 @@ method: "cosserat" (shooting, BDF-alpha in time) or "fe" (beam elements, Lie-gro
     generalized-alpha).
 duration_s: simulated time T [s] (> 0); dt_s: time step [s] (> 0), round(T / dt) steps.
 output_every: a row every K-th step (and t = 0 and the last step; default 1).
-max_iterations: Newton iterations per time step (default 30, in [1, 1000]).
+max_iterations: Newton iterations per time step (default 30, in [1, {}]).
 release_tip_load: the scenario's tip load acts at t = 0 only (a released cantilever).
 viscosity_Pa_s: Kelvin-Voigt viscosity [Pa s], constant along s (default: the scenario's).
 tip_mass_kg: point mass at the tip [kg] (default: the scenario's).
 alpha: cosserat, BDF-alpha parameter in [-0.5, 0] (default -0.2).
-steps: cosserat, RK4 steps along s (default: enough for the time step, >= 20).
-elements, order: fe, number of elements (default 16) and their order, 1 or 2 (default 2).
+steps: cosserat, RK4 steps along s, in [1, {}] (default: enough for the time step,
+    >= 20).
+elements, order: fe, number of elements in [1, {}] (default 16) and their order, 1 or 2
+    (default 2).
 rho_inf: fe, generalized-alpha spectral radius at infinite frequency in [0, 1] (default 0.9).
 progress: optional callable progress(done_steps, total_steps), called after each step.
 check: raise tcasim.SolverError (the partial trajectory as .result) when the static state or
     a time step fails (default); with check=False the trajectory is returned with
     completed False.
-Returns a tcasim.Trajectory. An option out of range raises tcasim.InputError naming it. The
-GIL is released while the simulation runs.)");
+Returns a tcasim.Trajectory. An option out of range or of the wrong kind (an integer
+keyword given 2.5, a number beyond a double) raises tcasim.InputError naming it, with the
+rule of the same flag of `tcasim simulate`. The GIL is released while the simulation runs.)",
+          study::kMaxNewtonIterations, study::kMaxSteps, study::kMaxElements)
+          .c_str());
 }
 
 }  // namespace tcasim::python

@@ -1,5 +1,6 @@
 // tcasim.solve and tcasim.sweep: forward kinetostatics with both methods, with the options of
-// `tcasim solve` / `tcasim sweep` (apps/cmd_solve.cpp) under the flags' names without dashes.
+// `tcasim solve` / `tcasim sweep` under the flags' names without dashes, checked by the same
+// functions (study/options.hpp).
 // The numbers are those of the command line: the same library calls in the same order.
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -9,80 +10,52 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
-#include "apps/cli_util.hpp"
 #include "beam_fe/beam_fe.hpp"
 #include "bindings.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "json_convert.hpp"
-#include "method/method.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/vtk.hpp"
+#include "method/method.hpp"
+#include "study/options.hpp"
 #include "study/sweep.hpp"
 
 namespace tcasim::python {
 
 namespace {
 
-/// The solve flags of the command line (`tcasim solve --help`).
+using study::OptionNames;
+
+/// The solve options of the keywords (`tcasim solve --help`), checked by study/options.hpp
+/// as the command line's flags.
 struct SolveOptions {
-  std::optional<int> steps;           ///< cosserat: fixed steps (even, >= 2; default 100)
-  std::optional<std::string> scheme;  ///< cosserat: rk4 (default), rk6, rk8
-  std::optional<double> rtol;         ///< cosserat: CVODE with this relative tolerance
-  bool no_planar = false;             ///< cosserat: solve a planar problem in 3-D
-  int elements = 16;                  ///< fe: number of elements
-  int order = 2;                      ///< fe: Lagrange order, 1 or 2
-  std::string integration = "reduced";
-  std::string linear_solver = "klu";
+  study::ShootingChoice shooting;
+  study::FeChoice fe;
 };
 
-/// The shooting options of the flags, as apps/cmd_solve.cpp builds them.
-cosserat::Options cosserat_options(const SolveOptions& f) {
-  cosserat::Options o;
-  const std::string scheme = f.scheme.value_or("rk4");
-  require(scheme == "rk4" || scheme == "rk6" || scheme == "rk8", "scheme", scheme,
-          "must be rk4, rk6 or rk8");
-  if (f.rtol && (f.steps || f.scheme)) {
-    throw InputError("rtol", format_value(*f.rtol),
-                     "excludes steps and scheme (CVODE chooses its own steps)");
-  }
-  o.integrator.method = scheme == "rk8"   ? ode::Method::kRk8
-                        : scheme == "rk6" ? ode::Method::kRk6
-                                          : ode::Method::kRk4;
-  if (f.rtol) {
-    require(*f.rtol > 0.0 && *f.rtol < 1.0, "rtol", *f.rtol, "must be in (0, 1)");
-    o.integrator.method = ode::Method::kCvode;
-    o.integrator.relative_tolerance = *f.rtol;
-    o.integrator.absolute_tolerance = *f.rtol * 1e-3;
-  } else if (f.steps) {
-    require(*f.steps >= 2 && *f.steps <= app::kMaxSteps && *f.steps % 2 == 0, "steps", *f.steps,
-            fmt::format("must be an even number in [2, {}]", app::kMaxSteps));
-    o.integrator.steps = *f.steps;
-  }
-  // RK8's coarse level: 2 steps (as the command line).
-  if (o.integrator.method == ode::Method::kRk8) o.coarse_steps = 2;
-  o.planar_reduction = !f.no_planar;
-  return o;
-}
-
-/// The FE options of the flags, as apps/cmd_solve.cpp builds them.
-beam_fe::Options fe_options(const SolveOptions& f) {
-  app::require_count(f.elements, "elements", 1, app::kMaxElements);
-  require(f.order == 1 || f.order == 2, "order", f.order, "must be 1 or 2");
-  beam_fe::Options o;
-  o.elements = f.elements;
-  o.order = f.order;
-  o.integration = beam_fe::parse_integration(f.integration);
-  o.linear_solver = beam_fe::parse_linear_solver(f.linear_solver);
-  return o;
-}
-
-void check_method(const std::string& method) {
-  require(method == "cosserat" || method == "fe", "method", method, "must be cosserat or fe");
+/// The keywords of both methods' options as C++ values (InputError naming a keyword that is
+/// not a number of the right kind).
+SolveOptions solve_options(const py::object& steps, std::optional<std::string> scheme,
+                           const py::object& rtol, bool no_planar, const py::object& elements,
+                           const py::object& order, const std::string& integration,
+                           const std::string& linear_solver) {
+  SolveOptions f;
+  f.shooting.steps = optional_integer_arg(steps, "steps");
+  f.shooting.scheme = std::move(scheme);
+  f.shooting.rtol = optional_number_arg(rtol, "rtol");
+  f.shooting.no_planar = no_planar;
+  f.fe.elements = integer_arg(elements, "elements");
+  f.fe.order = integer_arg(order, "order");
+  f.fe.integration = integration;
+  f.fe.linear_solver = linear_solver;
+  return f;
 }
 
 /// A solve's result with the file's convergence rule (rod::to_json): a result holding a
@@ -178,15 +151,14 @@ py::dict actuator_dict(const rod::ActuatorResult& a) {
   return e;
 }
 
-/// The method `method` names with its keywords (the module's one choice of method).
-method::StaticOptions static_options(const std::string& method, const SolveOptions& f) {
-  if (method == "fe") return fe_options(f);
-  return cosserat_options(f);
+/// Solves with the checked options of one method (as `tcasim solve`).
+rod::Result solve_with(const rod::RodModel& model, const method::StaticOptions& options) {
+  return method::solve(model, options);
 }
 
-rod::Result solve_with(const rod::RodModel& model, const std::string& method,
-                       const SolveOptions& f) {
-  return method::solve(model, static_options(method, f));
+/// The checked options of `method` (InputError naming the keyword).
+method::StaticOptions method_options(const std::string& method, const SolveOptions& f) {
+  return study::static_options(method, f.shooting, f.fe, OptionNames::kPython);
 }
 
 std::optional<std::string> fspath(const py::object& p) {
@@ -200,16 +172,18 @@ void benchmark_sink(const rod::Result& r) {
   sink = sink + r.tip_position_W_m.x();
 }
 
-const char* kOptionsDoc = R"(
+const std::string kOptionsDoc = fmt::format(R"(
 Options (the flags of `tcasim solve`, without dashes; each applies to one method):
-  steps: cosserat, fixed integration steps (even, in [2, 100000]; default 100).
+  steps: cosserat, fixed integration steps (even, in [2, {}]; default 100).
   scheme: cosserat, "rk4" (default, the paper's), "rk6" or "rk8".
   rtol: cosserat, SUNDIALS CVODE with this relative tolerance (excludes steps, scheme).
   no_planar: cosserat, solve a planar problem as a 3-D one (for cross-checks).
-  elements: fe, number of elements (in [1, 10000]; default 16).
+  elements: fe, number of elements (in [1, {}]; default 16).
   order: fe, Lagrange order of the elements, 1 or 2 (default 2).
   integration: fe, Gauss rule "reduced" (default) or "full".
-  linear_solver: fe, "klu" (default), "umfpack" or "sparselu".)";
+  linear_solver: fe, "klu" (default), "umfpack" or "sparselu".
+A value out of range or of the wrong kind raises tcasim.InputError naming the keyword.)",
+                                            study::kMaxSteps, study::kMaxElements);
 
 }  // namespace
 
@@ -349,19 +323,19 @@ void register_solve(py::module_& m) {
 
   m.def(
       "solve",
-      [](py::object scenario, const std::string& method, std::optional<int> steps,
-         std::optional<std::string> scheme, std::optional<double> rtol, bool no_planar,
-         int elements, int order, const std::string& integration, const std::string& linear_solver,
+      [](py::object scenario, const std::string& method, py::object steps,
+         std::optional<std::string> scheme, py::object rtol, bool no_planar, py::object elements,
+         py::object order, const std::string& integration, const std::string& linear_solver,
          py::object vtk, py::object shape_csv, bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
-        check_method(method);
-        const SolveOptions f{steps,    scheme, rtol,        no_planar,
-                             elements, order,  integration, linear_solver};
+        const auto options =
+            method_options(method, solve_options(steps, std::move(scheme), rtol, no_planar,
+                                                 elements, order, integration, linear_solver));
         const std::optional<std::string> vtk_path = fspath(vtk), csv_path = fspath(shape_csv);
         auto result = std::make_shared<Result>();
         {
           py::gil_scoped_release release;
-          result->r = solve_with(*sc->model, method, f);
+          result->r = solve_with(*sc->model, options);
           result->finite = all_finite(result->r);
           if (vtk_path) rod::write_vtp(*sc->model, result->r, *vtk_path);
           if (csv_path) rod::write_shape_csv(*sc->model, result->r, *csv_path);
@@ -394,13 +368,12 @@ the solver runs.)") +
       "_solve_times_cpp",
       [](py::object scenario, const std::string& method, int repeats) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
-        check_method(method);
-        const SolveOptions f;
+        const auto options = method_options(method, SolveOptions{});
         std::vector<double> times;
         py::gil_scoped_release release;
         for (int k = 0; k < repeats; ++k) {
           const auto t0 = std::chrono::steady_clock::now();
-          rod::Result r = solve_with(*sc->model, method, f);
+          rod::Result r = solve_with(*sc->model, options);
           const auto t1 = std::chrono::steady_clock::now();
           benchmark_sink(r);
           times.push_back(std::chrono::duration<double>(t1 - t0).count());
@@ -413,22 +386,21 @@ the solver runs.)") +
 
   m.def(
       "sweep",
-      [](py::object scenario, const std::string& actuator,
-         std::optional<std::vector<double>> temperatures_degC,
-         std::optional<std::vector<double>> tensions_N, const std::string& method,
-         std::optional<int> steps, std::optional<std::string> scheme, std::optional<double> rtol,
-         bool no_planar, int elements, int order, const std::string& integration,
-         const std::string& linear_solver, int jobs, long long chunk) {
+      [](py::object scenario, const std::string& actuator, py::object temperatures_degC,
+         py::object tensions_N, const std::string& method, py::object steps,
+         std::optional<std::string> scheme, py::object rtol, bool no_planar, py::object elements,
+         py::object order, const std::string& integration, const std::string& linear_solver,
+         py::object jobs_arg, py::object chunk_arg) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         const rod::RodModel& model = *sc->model;
-        check_method(method);
+        study::check_method(method, OptionNames::kPython);
         const std::size_t index = actuator_index(model, actuator, "actuator");
         const rod::Actuator& act = model.actuators[index];
-        if (temperatures_degC.has_value() == tensions_N.has_value()) {
+        if (temperatures_degC.is_none() == tensions_N.is_none()) {
           throw InputError("temperatures_degC/tensions_N", "(both or none)",
                            "give exactly one of them");
         }
-        const bool by_temperature = temperatures_degC.has_value();
+        const bool by_temperature = !temperatures_degC.is_none();
         if (by_temperature && act.drive.type != rod::Drive::Type::kTca) {
           throw InputError("temperatures_degC", "(given)",
                            "needs a TCA-driven actuator; '" + act.name + "' has a tension drive");
@@ -437,24 +409,25 @@ the solver runs.)") +
           throw InputError("tensions_N", "(given)",
                            "needs a tension-driven actuator; '" + act.name + "' has a TCA drive");
         }
-        const std::vector<double> values = by_temperature ? *temperatures_degC : *tensions_N;
-        for (double v : values) {
-          require(std::isfinite(v), by_temperature ? "temperatures_degC" : "tensions_N", v,
-                  "must be finite");
-          if (by_temperature) {
-            require(v > -units::kZeroCelsius_K, "temperatures_degC", v, "is below absolute zero");
-          }
+        const std::vector<double> values =
+            by_temperature ? number_list_arg(temperatures_degC, "temperatures_degC")
+                           : number_list_arg(tensions_N, "tensions_N");
+        if (!by_temperature) {
+          for (double v : values) require(std::isfinite(v), "tensions_N", v, "must be finite");
         }
-        const SolveOptions f{steps,    scheme, rtol,        no_planar,
-                             elements, order,  integration, linear_solver};
-        app::require_count(jobs, "jobs", 1, app::kMaxJobs);
-        app::require_count(chunk, "chunk", 1, 1000000);
+        const SolveOptions f = solve_options(steps, std::move(scheme), rtol, no_planar, elements,
+                                             order, integration, linear_solver);
+        const long long jobs = integer_arg(jobs_arg, "jobs");
+        const long long chunk = integer_arg(chunk_arg, "chunk");
+        study::check_sweep_jobs(jobs, chunk, OptionNames::kPython);
         // Options first, so a bad one is reported before any solve.
         study::Sweep sw;
         sw.actuator = index;
         sw.by_temperature = by_temperature;
-        for (double v : values) sw.values.push_back(by_temperature ? units::degC_to_K(v) : v);
-        sw.method = static_options(method, f);
+        sw.values = by_temperature
+                        ? study::temperatures_K(values, "temperatures_degC", OptionNames::kPython)
+                        : values;
+        sw.method = method_options(method, f);
         std::vector<rod::Result> results(values.size());
         {
           py::gil_scoped_release release;
@@ -462,7 +435,8 @@ the solver runs.)") +
           // points, each starting cold, so the threads give the numbers of the serial run.
           const std::vector<IndexRange> chunks =
               fixed_chunks(values.size(), static_cast<std::size_t>(chunk));
-          study::solve_chunks(model, sw, chunks, IndexRange{0, chunks.size()}, jobs,
+          study::solve_chunks(model, sw, chunks, IndexRange{0, chunks.size()},
+                              static_cast<int>(jobs),
                               [&](std::size_t k, rod::Result&& r) { results[k] = std::move(r); });
         }
         // Columns of the CSV of `tcasim sweep`, in its order (numbers unrounded).

@@ -14,25 +14,6 @@ namespace tcasim::study {
 
 namespace {
 
-/// RK4 steps along s (as apps/cli_util.hpp kMaxSteps).
-constexpr int kMaxSteps = 100000;
-
-void require_count(long long value, const std::string& key, OptionNames style, long long lo,
-                   long long hi) {
-  require(value >= lo && value <= hi, option_name(key, style), static_cast<double>(value),
-          fmt::format("must be an integer in [{}, {}]", lo, hi));
-}
-
-/// An InputError of a dynamics constructor under the option's name.
-[[noreturn]] void rethrow_named(const InputError& e, OptionNames style) {
-  std::string key = e.key();
-  if (key.rfind("dynamics.", 0) == 0) key = key.substr(9);
-  if (key == "steps" || key == "rho_inf" || key == "elements" || key == "order") {
-    throw InputError(option_name(key, style), e.value(), e.rule());
-  }
-  throw e;
-}
-
 /// The time loop for one solver: rows and frames to the hooks.
 rod::TrajectoryOutcome run(method::DynamicSolver& dyn, const rod::RodModel& model,
                            const SimulationOptions& o, long long n_steps,
@@ -54,13 +35,6 @@ rod::TrajectoryOutcome run(method::DynamicSolver& dyn, const rod::RodModel& mode
 
 }  // namespace
 
-std::string option_name(const std::string& key, OptionNames style) {
-  if (style == OptionNames::kPython) return key;
-  std::string flag = "--" + key;
-  std::replace(flag.begin(), flag.end(), '_', '-');
-  return flag;
-}
-
 long long check_time_options(double duration_s, double dt_s, double alpha, OptionNames style) {
   const auto name = [style](const char* key) { return option_name(key, style); };
   require(std::isfinite(duration_s) && duration_s > 0.0, name("duration_s"), duration_s,
@@ -75,11 +49,15 @@ long long check_time_options(double duration_s, double dt_s, double alpha, Optio
 
 long long check_simulation_options(const SimulationOptions& o, OptionNames style) {
   const auto name = [style](const char* key) { return option_name(key, style); };
-  require(o.method == "cosserat" || o.method == "fe", name("method"), o.method,
-          "must be cosserat or fe");
+  check_method(o.method, style);
   const long long n_steps = check_time_options(o.duration_s, o.dt_s, o.alpha, style);
-  require_count(o.output_every, "output_every", style, 1, kMaxTimeSteps);
-  if (o.steps != 0) require_count(o.steps, "steps", style, 1, kMaxSteps);
+  require_count(o.output_every, name("output_every"), 1, kMaxTimeSteps);
+  if (o.steps) require_count(*o.steps, name("steps"), 1, kMaxSteps);
+  require_count(o.elements, name("elements"), 1, kMaxElements);
+  if (o.order != 1 && o.order != 2) {
+    throw InputError(name("order"), fmt::format("{}", o.order), "must be 1 or 2");
+  }
+  require(o.rho_inf >= 0.0 && o.rho_inf <= 1.0, name("rho_inf"), o.rho_inf, "must be in [0, 1]");
   if (o.viscosity_Pa_s) {
     require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0, name("viscosity_Pa_s"),
             *o.viscosity_Pa_s, "must be >= 0");
@@ -88,7 +66,7 @@ long long check_simulation_options(const SimulationOptions& o, OptionNames style
     require(std::isfinite(*o.tip_mass_kg) && *o.tip_mass_kg >= 0.0, name("tip_mass_kg"),
             *o.tip_mass_kg, "must be >= 0");
   }
-  require_count(o.max_iterations, "max_iterations", style, 1, 1000);
+  require_count(o.max_iterations, name("max_iterations"), 1, kMaxNewtonIterations);
   return n_steps;
 }
 
@@ -97,11 +75,11 @@ method::DynamicOptions dynamic_options(const rod::RodModel& model, const Simulat
   // mass only when given, in both methods.
   if (o.method == "fe") {
     beam_fe::DynamicsOptions fo;
-    fo.elements = o.elements;
-    fo.order = o.order;
+    fo.elements = static_cast<int>(o.elements);
+    fo.order = static_cast<int>(o.order);
     fo.dt_s = o.dt_s;
     fo.rho_inf = o.rho_inf;
-    fo.max_iterations = o.max_iterations;
+    fo.max_iterations = static_cast<int>(o.max_iterations);
     fo.viscosity_Pa_s = o.viscosity_Pa_s;
     fo.tip_mass_kg = o.tip_mass_kg;
     return fo;
@@ -109,10 +87,10 @@ method::DynamicOptions dynamic_options(const rod::RodModel& model, const Simulat
   cosserat::DynamicsOptions co;
   co.dt_s = o.dt_s;
   co.alpha = o.alpha;
-  co.steps = o.steps != 0 ? o.steps : cosserat::recommended_steps(model, co);
+  co.steps = o.steps ? static_cast<int>(*o.steps) : cosserat::recommended_steps(model, co);
   co.viscosity_Pa_s = o.viscosity_Pa_s;
   co.tip_mass_kg = o.tip_mass_kg;
-  co.max_iterations = o.max_iterations;
+  co.max_iterations = static_cast<int>(o.max_iterations);
   return co;
 }
 
@@ -123,7 +101,7 @@ rod::TrajectoryOutcome simulate(const rod::RodModel& model, const SimulationOpti
   try {
     dyn = std::make_unique<method::DynamicSolver>(model, dynamic_options(model, o));
   } catch (const InputError& e) {
-    rethrow_named(e, style);
+    rethrow_under_option_name(e, style);
   }
   return run(*dyn, model, o, n_steps, hooks);
 }

@@ -11,41 +11,35 @@
 #include "rod/model.hpp"
 #include "rod/result.hpp"
 #include "rod/trajectory.hpp"
+#include "study/options.hpp"
 
 namespace tcasim::study {
 
-/// The most time steps a simulation takes (a typo in --dt-s would otherwise run for days).
-inline constexpr long long kMaxTimeSteps = 100000000;
-
 /// The options of `tcasim simulate` (its flags; tcasim.simulate's keywords).
 struct SimulationOptions {
-  std::string method = "cosserat";  ///< "cosserat" or "fe"
-  double duration_s = 0.0;          ///< simulated time T [s], > 0
-  double dt_s = 0.0;                ///< time step [s], > 0 (round(T / dt) steps)
-  long long output_every = 1;       ///< a row every K-th step (and t = 0, the last step)
-  int max_iterations = 30;          ///< Newton iterations per time step
-  bool release_tip_load = false;    ///< the scenario's tip load acts at t = 0 only
+  std::string method = "cosserat";       ///< "cosserat" or "fe"
+  double duration_s = 0.0;               ///< simulated time T [s], > 0
+  double dt_s = 0.0;                     ///< time step [s], > 0 (round(T / dt) steps)
+  long long output_every = 1;            ///< a row every K-th step (and t = 0, the last step)
+  long long max_iterations = 30;         ///< Newton iterations per time step, in [1, 1000]
+  bool release_tip_load = false;         ///< the scenario's tip load acts at t = 0 only
   std::optional<double> viscosity_Pa_s;  ///< overrides body.material.viscosity_Pa_s [Pa s]
   std::optional<double> tip_mass_kg;     ///< overrides tip_mass_kg [kg]
-  double alpha = -0.2;  ///< cosserat: BDF-alpha parameter in [-0.5, 0]
-  int steps = 0;        ///< cosserat: RK4 steps along s; 0: cosserat::recommended_steps
-  int elements = 16;    ///< fe: number of elements
-  int order = 2;        ///< fe: element order, 1 or 2
-  double rho_inf = 0.9; ///< fe: generalized-alpha spectral radius at infinite frequency
+  double alpha = -0.2;                   ///< cosserat: BDF-alpha parameter in [-0.5, 0]
+  /// cosserat: RK4 steps along s, in [1, kMaxSteps]; absent: cosserat::recommended_steps
+  std::optional<long long> steps;
+  long long elements = 16;  ///< fe: number of elements, in [1, kMaxElements]
+  long long order = 2;      ///< fe: element order, 1 or 2
+  double rho_inf = 0.9;     ///< fe: generalized-alpha spectral radius at infinity, in [0, 1]
 };
-
-/// How option names appear in errors: "dt_s" (Python) or "--dt-s" (the command line).
-enum class OptionNames { kPython, kFlags };
-
-/// The name of option `key` (snake_case) in `style`.
-std::string option_name(const std::string& key, OptionNames style);
 
 /// Checks duration, time step and BDF-alpha parameter (InputError naming the option in
 /// `style`); returns the number of time steps round(duration_s / dt_s), in [1, kMaxTimeSteps].
 long long check_time_options(double duration_s, double dt_s, double alpha, OptionNames style);
 
 /// Checks the options' ranges (InputError naming the option in `style`, its value and the
-/// rule); returns the number of time steps round(duration_s / dt_s).
+/// rule); returns the number of time steps round(duration_s / dt_s). The rules of the time
+/// grid and both methods' options, also for `tcasim compare --dynamic`.
 long long check_simulation_options(const SimulationOptions& o, OptionNames style);
 
 /// What a simulation reports while it runs; every callback is optional.
@@ -57,8 +51,8 @@ struct SimulationHooks {
 };
 
 /// The method and its settings of checked options `o`: the scenario's viscosity and tip mass
-/// unless the options replace them; the shooting grid cosserat::recommended_steps when
-/// `steps` is 0.
+/// unless the options replace them; the shooting grid cosserat::recommended_steps unless
+/// `steps` is given.
 method::DynamicOptions dynamic_options(const rod::RodModel& model, const SimulationOptions& o);
 /// Runs the simulation of `model` (checked options; InputError in `style` for what the
 /// dynamics refuses). A failed step is an outcome (ok false with the message), not an error.
