@@ -9,7 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "beam_fe/dynamics_damping.hpp"
+#include "beam_fe/internal/dynamics_damping.hpp"
 #include "beam_fe/internal/klu_refactoring.hpp"
 #include "beam_fe/internal/quadrature.hpp"
 #include "common/error.hpp"

@@ -1,5 +1,5 @@
 // Kelvin-Voigt damping of the FE dynamics: the strain-rate history per quadrature point and the
-// nodal forces of the viscous stress (beam_fe/dynamics_damping.hpp).
+// nodal forces of the viscous stress (beam_fe/internal/dynamics_damping.hpp).
 //
 // The forces of the work function W(eps) = sigma_h . eps + 1/2 eps . C eps follow the chain of
 // the element kernel (element.cpp): increments theta -> u = (y_a, psi_a) -> g = (y', psi, psi')
@@ -8,7 +8,7 @@
 // eps), plus the second derivatives of u(theta) contracted with the gradient, plus hat(r_rot)/2
 // per node. Here the derivatives of W(g) come from nested dual numbers over the 9 components of g
 // (the element kernel writes them in closed form); the node map's are the kernel's formulas.
-#include "beam_fe/dynamics_damping.hpp"
+#include "beam_fe/internal/dynamics_damping.hpp"
 
 #include <cmath>
 

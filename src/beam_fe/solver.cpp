@@ -12,7 +12,7 @@
 
 #include "beam_fe/beam_fe.hpp"
 #include "beam_fe/internal/klu_refactoring.hpp"
-#include "beam_fe/umfpack_loader.hpp"
+#include "beam_fe/internal/umfpack_loader.hpp"
 #include "common/error.hpp"
 
 namespace tcasim::beam_fe {
