@@ -1,7 +1,8 @@
 # tcasim_check_installed_headers(ROOT): the installed include tree ROOT (<prefix>/include/tcasim,
 # the consumer's include directory) holds the public API only, or configuration stops with a
 # FATAL_ERROR naming every offending file and #include line:
-#   - no folder named `internal` (a component's private headers, src/<component>/internal/);
+#   - no folder named `internal` (a component's private headers, src/<component>/internal/),
+#     and no installed header names an internal/ path, not even in a comment;
 #   - every #include of every installed header names a header installed under ROOT ("x" next
 #     to the including header or under ROOT, <x> under ROOT), a C++ standard library header
 #     (<vector>: no extension), Eigen (<Eigen/...>) or a public dependency of the libraries:
@@ -11,6 +12,7 @@
 # path or a header that is not installed fails. Used by TcasimPackageTest.cmake; on its own:
 #   cmake -DROOT=<prefix>/include/tcasim -P cmake/TcasimInstalledHeaders.cmake
 function(tcasim_check_installed_headers root)
+  get_filename_component(root "${root}" ABSOLUTE)
   if(NOT IS_DIRECTORY "${root}")
     message(FATAL_ERROR "installed headers: ${root} is not a folder")
   endif()
@@ -29,6 +31,11 @@ function(tcasim_check_installed_headers root)
       "^(klu|umfpack|cholmod|amd|colamd|camd|ccolamd|btf|SuiteSparse_config)\\.h$|^(cvode|cvodes|ida|idas|arkode|kinsol|sundials|nvector|sunlinsol|sunmatrix|sunnonlinsol|sunmemory|sunadaptcontroller)/")
   foreach(header IN LISTS headers)
     get_filename_component(folder "${root}/${header}" DIRECTORY)
+    file(STRINGS "${root}/${header}" mentions REGEX "internal/")
+    foreach(line IN LISTS mentions)
+      string(STRIP "${line}" line)
+      string(APPEND problems "  ${header}: `${line}` names an internal/ path\n")
+    endforeach()
     file(STRINGS "${root}/${header}" lines REGEX "^[ \t]*#[ \t]*include")
     foreach(line IN LISTS lines)
       if(NOT line MATCHES "^[ \t]*#[ \t]*include[ \t]*([<\"])([^>\"]+)[>\"]")
