@@ -4,7 +4,8 @@
 #   target_link_libraries(app PRIVATE tcasim::tcasim)        # or single components
 # Components (exported names): tcasim::common, tca, rod, cosserat, beam_fe, crosscheck, study;
 # tcasim::tcasim links them all. Layout:
-#   <prefix>/include/tcasim/...            headers (as under src/: "rod/scenario.hpp");
+#   <prefix>/include/tcasim/...            public headers (as under src/: "rod/scenario.hpp",
+#                                          without the components' internal/ folders);
 #                                          the umbrella header is <tcasim/tcasim.hpp>
 #   <prefix>/lib/libtcasim_*.a             the libraries (.so with -DBUILD_SHARED_LIBS=ON; the
 #                                          installed ones and the program find each other
@@ -53,8 +54,11 @@ install(TARGETS ${_tcasim_targets} EXPORT tcasimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
         INCLUDES DESTINATION ${TCASIM_INSTALL_INCLUDEDIR})
+# The public headers only: a component's internal/ folder holds the headers its own sources
+# and tests share (they may include private dependencies such as <klu.h>); the package test
+# checks the installed include tree (TcasimPackageTest.cmake).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${TCASIM_INSTALL_INCLUDEDIR}
-        COMPONENT development FILES_MATCHING PATTERN "*.hpp")
+        COMPONENT development FILES_MATCHING PATTERN "*.hpp" PATTERN "internal" EXCLUDE)
 install(EXPORT tcasimTargets NAMESPACE tcasim:: DESTINATION ${TCASIM_INSTALL_CMAKEDIR}
         COMPONENT development)
 

@@ -2,6 +2,7 @@
 # configures and builds examples/solve_scenario against it (find_package(tcasim)), installs
 # the example into the same prefix and runs it there: it must solve the shipped scenario
 # and find the shipped materials in the installed data folder, not in the source tree.
+# Before that, the installed include tree must be public API only (TcasimInstalledHeaders.cmake).
 # The installed tcasim loads the installed UMFPACK plugin (PLUGIN: its path under the prefix).
 # Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, BUILD_TYPE, PLUGIN; PYTHON and
 # PYTHON_SITE (the interpreter and the package folder under the prefix; empty: no module built);
@@ -33,6 +34,12 @@ foreach(file include/tcasim/tcasim/tcasim.hpp lib/cmake/tcasim/tcasimConfig.cmak
     message(FATAL_ERROR "the install lacks ${file}; it holds:\n${installed}")
   endif()
 endforeach()
+
+# The installed headers are the public API only: no internal/ folder, and every #include
+# resolves to an installed header, the standard library, Eigen, fmt or nlohmann-json, never to
+# a private dependency such as <klu.h> or SUNDIALS (TcasimInstalledHeaders.cmake).
+include(${CMAKE_CURRENT_LIST_DIR}/TcasimInstalledHeaders.cmake)
+tcasim_check_installed_headers("${prefix}/include/tcasim")
 
 run("configuring the example" ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/solve_scenario"
     -B "${example_build}" -G "${GENERATOR}" -DCMAKE_CXX_COMPILER=${CXX_COMPILER}

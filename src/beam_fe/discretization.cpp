@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "beam_fe/beam_fe.hpp"
+#include "beam_fe/internal/quadrature.hpp"
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "rod/closed_form.hpp"
@@ -110,15 +111,7 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
 
   // Gauss-Legendre points on [-1, 1].
   const int points = order_ + (options.integration == Integration::kFull ? 1 : 0);
-  if (points == 1) {
-    quad_ = {{0.0}, {2.0}};
-  } else if (points == 2) {
-    const double x = 1.0 / std::sqrt(3.0);
-    quad_ = {{-x, x}, {1.0, 1.0}};
-  } else {
-    const double x = std::sqrt(0.6);
-    quad_ = {{-x, 0.0, x}, {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0}};
-  }
+  internal::gauss_rule(points, quad_.xi, quad_.weight);
 
   tca_unknown_.assign(model.actuators.size(), -1);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
@@ -147,15 +140,8 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           uniform ? uniform_psi_A
                   : model.mass_per_length_kg_m(element_s0_m_[static_cast<std::size_t>(e)] +
                                                0.5 * (xi + 1.0) * h_e);
-      double N[3];
-      if (order_ == 1) {
-        N[0] = 0.5 * (1.0 - xi);
-        N[1] = 0.5 * (1.0 + xi);
-      } else {
-        N[0] = 0.5 * xi * (xi - 1.0);
-        N[1] = 1.0 - xi * xi;
-        N[2] = 0.5 * xi * (xi + 1.0);
-      }
+      double N[3], dN_dxi[3];
+      internal::shape(order_, xi, N, dN_dxi);
       for (int a = 0; a <= order_; ++a) node_mass_kg_[e * order_ + a] += wj * N[a] * psi_A;
     }
   }

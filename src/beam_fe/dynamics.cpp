@@ -9,8 +9,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "beam_fe/dynamics_damping.hpp"
-#include "beam_fe/dynamics_internal.hpp"
+#include "beam_fe/internal/dynamics_damping.hpp"
+#include "beam_fe/internal/klu_refactoring.hpp"
+#include "beam_fe/internal/quadrature.hpp"
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "rod/electric_thermal.hpp"
@@ -22,9 +23,17 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 using SpMat = Eigen::SparseMatrix<double>;
-using dynamics_internal::gauss_rule;
-using dynamics_internal::Klu;
-using dynamics_internal::slot_of;
+using internal::gauss_rule;
+
+/// Index of entry (i, j) of a compressed column-major matrix in its values (it must exist).
+int slot_of(const SpMat& A, int i, int j) {
+  const int* inner = A.innerIndexPtr();
+  const int* begin = inner + A.outerIndexPtr()[j];
+  const int* end = inner + A.outerIndexPtr()[j + 1];
+  const int* it = std::lower_bound(begin, end, i);
+  if (it == end || *it != i) throw std::logic_error("beam_fe dynamics: entry outside the pattern");
+  return static_cast<int>(it - inner);
+}
 
 }  // namespace
 
@@ -96,7 +105,7 @@ struct BeamDynamics::Impl {
   State st, trial;
   VectorXd v, vd, a, v1, vd1, a1, x_last;
   SpMat K;
-  Klu lu;
+  internal::KluRefactoring lu;
   bool factored = false;           // lu holds a factorization of an earlier step Jacobian
   std::vector<int> inertia_slots;  // value index of every inertia entry, in assembly order
   Discretization::Floor floor{0.0, 0.0};
@@ -157,7 +166,7 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
   for (int e = 0; e < disc_static->element_count(); ++e) {
     const double s0 = disc_static->element_start_m(e), he = disc_static->element_length_m(e);
     for (std::size_t g = 0; g < xi.size(); ++g) {
-      dynamics_internal::shape(order, xi[g], N, dN);
+      internal::shape(order, xi[g], N, dN);
       const double s = s0 + 0.5 * (xi[g] + 1.0) * he;
       const double wj = w[g] * 0.5 * he;
       const double rhoA = m.mass_per_length_kg_m(s);

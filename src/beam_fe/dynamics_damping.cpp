@@ -1,5 +1,5 @@
 // Kelvin-Voigt damping of the FE dynamics: the strain-rate history per quadrature point and the
-// nodal forces of the viscous stress (beam_fe/dynamics_damping.hpp).
+// nodal forces of the viscous stress (beam_fe/internal/dynamics_damping.hpp).
 //
 // The forces of the work function W(eps) = sigma_h . eps + 1/2 eps . C eps follow the chain of
 // the element kernel (element.cpp): increments theta -> u = (y_a, psi_a) -> g = (y', psi, psi')
@@ -8,11 +8,12 @@
 // eps), plus the second derivatives of u(theta) contracted with the gradient, plus hat(r_rot)/2
 // per node. Here the derivatives of W(g) come from nested dual numbers over the 9 components of g
 // (the element kernel writes them in closed form); the node map's are the kernel's formulas.
-#include "beam_fe/dynamics_damping.hpp"
+#include "beam_fe/internal/dynamics_damping.hpp"
 
 #include <cmath>
 
-#include "beam_fe/dynamics_internal.hpp"
+#include "beam_fe/internal/node_map.hpp"
+#include "beam_fe/internal/quadrature.hpp"
 #include "common/dual.hpp"
 #include "common/lie_series.hpp"
 #include "common/so3.hpp"
@@ -26,8 +27,8 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 using Vector9d = Eigen::Matrix<double, 9, 1>;
-using dynamics_internal::gauss_rule;
-using dynamics_internal::shape;
+using internal::gauss_rule;
+using internal::shape;
 
 /// W(g) = sigma_h . eps(g) + 1/2 eps(g) . C eps(g) as a nested dual over g: its gradient (F^T
 /// sigma) and Hessian.
@@ -88,21 +89,14 @@ void add_viscous_forces(const Discretization& disc, const State& state,
     std::vector<Vector3d> y(n), psi(n);
     std::vector<Matrix3d> A(n, Matrix3d::Identity());
     std::vector<std::array<Matrix3d, 3>> dA(n);
+    internal::node_coordinates(state, first, n, ref, q_ref, R_ref, y.data(), psi.data());
     for (int a = 0; a < n; ++a) {
-      y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
-      psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
       if (a == ref) continue;
-      // A = Jr^-1(psi) = I + K/2 + d K^2 and dA/dpsi_k (as element.cpp), d' from a dual.
+      // A = Jr^-1(psi) and dA/dpsi_k (internal/node_map.hpp), d' from a dual.
       ad::Dual<double, 1> t2(psi[a].squaredNorm());
       t2.d[0] = 1.0;
       const so3::Coefficients<ad::Dual<double, 1>> c = so3::coefficients(t2);
-      const Matrix3d Kp = so3::hat(psi[a]);
-      const Matrix3d K2 = Kp * Kp;
-      A[a] = Matrix3d::Identity() + 0.5 * Kp + c.d.v * K2;
-      for (int k = 0; k < 3; ++k) {
-        const Matrix3d Ek = so3::hat(Vector3d::Unit(k));
-        dA[a][k] = 0.5 * Ek + 2.0 * c.d.d[0] * psi[a][k] * K2 + c.d.v * (Ek * Kp + Kp * Ek);
-      }
+      internal::inverse_right_jacobian(psi[a], c.d.v, c.d.d[0], A[a], dA[a]);
     }
     VectorXd grad_u = VectorXd::Zero(nu);
     MatrixXd hess_u = MatrixXd::Zero(nu, nu);
@@ -131,50 +125,16 @@ void add_viscous_forces(const Discretization& disc, const State& state,
       grad_u += wj * G.transpose() * gg;
       if (Kg) hess_u += wj * G.transpose() * S * G;
     }
-    // B = du/dtheta (element.cpp).
+    // B = du/dtheta (internal/node_map.hpp).
     MatrixXd B = MatrixXd::Zero(nu, nu);
-    const int phr = 6 * ref + 3, dr = 6 * ref;
-    for (int a = 0; a < n; ++a) {
-      if (a == ref) continue;
-      B.block<3, 3>(3 * a, 6 * a) = R_ref.transpose();
-      B.block<3, 3>(3 * a, dr) = -R_ref.transpose();
-      B.block<3, 3>(3 * a, phr) = so3::hat(y[a]);
-      B.block<3, 3>(3 * n + 3 * a, 6 * a + 3) = A[a];
-      B.block<3, 3>(3 * n + 3 * a, phr) = -A[a].transpose();
-    }
+    internal::node_map_jacobian(n, ref, R_ref, y.data(), A.data(), B);
     const VectorXd res = B.transpose() * grad_u;
     const int base = 6 * first - 6;
     for (int i = 0; i < nu; ++i)
       if (base + i >= 0) r[base + i] += res[i];
     if (!Kg) continue;
     MatrixXd K = B.transpose() * hess_u * B;
-    for (int a = 0; a < n; ++a) {
-      if (a == ref) continue;
-      const Vector3d gy = grad_u.segment<3>(3 * a);
-      K.block<3, 3>(phr, phr) += 0.5 * (gy * y[a].transpose() + y[a] * gy.transpose()) -
-                                 gy.dot(y[a]) * Matrix3d::Identity();
-      const Matrix3d Hrd = so3::hat(gy) * R_ref.transpose();
-      K.block<3, 3>(phr, 6 * a) += Hrd;
-      K.block<3, 3>(phr, dr) -= Hrd;
-      K.block<3, 3>(6 * a, phr) += Hrd.transpose();
-      K.block<3, 3>(dr, phr) -= Hrd.transpose();
-      const Vector3d gp = grad_u.segment<3>(3 * n + 3 * a);
-      auto DA = [&](const Vector3d& v) {
-        return Matrix3d(v[0] * dA[a][0] + v[1] * dA[a][1] + v[2] * dA[a][2]);
-      };
-      Matrix3d Haa, Hrr, Har;
-      for (int j = 0; j < 3; ++j) {
-        const Vector3d ej = Vector3d::Unit(j);
-        Haa.col(j) = DA(A[a] * ej).transpose() * gp - 0.5 * (A[a].transpose() * gp).cross(ej);
-        Hrr.col(j) = DA(A[a].transpose() * ej) * gp + 0.5 * (A[a] * gp).cross(ej);
-        Har.col(j) = -DA(A[a].transpose() * ej).transpose() * gp;
-      }
-      const int pha = 6 * a + 3;
-      K.block<3, 3>(pha, pha) += Haa;
-      K.block<3, 3>(phr, phr) += Hrr;
-      K.block<3, 3>(pha, phr) += Har;
-      K.block<3, 3>(phr, pha) += Har.transpose();
-    }
+    internal::add_node_map_hessian(n, ref, R_ref, y.data(), A.data(), dA.data(), grad_u, K);
     for (int a = 0; a < n; ++a) {
       K.block<3, 3>(6 * a + 3, 6 * a + 3) += 0.5 * so3::hat(Vector3d(res.segment<3>(6 * a + 3)));
     }

@@ -20,6 +20,8 @@
 #include <cmath>
 
 #include "beam_fe/beam_fe.hpp"
+#include "beam_fe/internal/node_map.hpp"
+#include "beam_fe/internal/quadrature.hpp"
 #include "common/dual.hpp"
 #include "common/lie_series.hpp"
 #include "common/so3.hpp"
@@ -35,23 +37,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 using Vector9d = Eigen::Matrix<double, 9, 1>;
-
-/// Lagrange shape functions on xi in [-1, 1] with equally spaced nodes.
-void shape(int order, double xi, double* N, double* dN_dxi) {
-  if (order == 1) {
-    N[0] = 0.5 * (1.0 - xi);
-    N[1] = 0.5 * (1.0 + xi);
-    dN_dxi[0] = -0.5;
-    dN_dxi[1] = 0.5;
-  } else {
-    N[0] = 0.5 * xi * (xi - 1.0);
-    N[1] = 1.0 - xi * xi;
-    N[2] = 0.5 * xi * (xi + 1.0);
-    dN_dxi[0] = xi - 0.5;
-    dN_dxi[1] = -2.0 * xi;
-    dN_dxi[2] = xi + 0.5;
-  }
-}
+using internal::shape;
 
 /// The coefficients a, b, c, d (common/lie_series.hpp) at t2 = |psi|^2 and their first and second
 /// derivatives with respect to t2, from a scalar nested dual seeded on t2.
@@ -161,24 +147,13 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   std::array<Vector3d, n> y, psi;
   std::array<Matrix3d, n> A;                  // Jr^-1(psi_a)
   std::array<std::array<Matrix3d, 3>, n> dA;  // dJr^-1/dpsi_k
+  internal::node_coordinates(state, first, n, ref, q_ref, R_ref, y.data(), psi.data());
   for (int a = 0; a < n; ++a) {
-    // Relative to the reference node (y' is unchanged since sum_a N_a' = 0): keeps the
-    // moment rows free of |p| times the force round-off.
-    y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
-    psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
     A[a].setIdentity();
     if (a == ref) continue;
-    // A = Jr^-1(psi) = I + K/2 + d K^2 (K = hat(psi)); dA/dpsi_k = hat(e_k)/2 + (dd/dpsi_k) K^2
-    // + d (hat(e_k) K + K hat(e_k)), with dd/dpsi_k from dual numbers.
-    // dd/dpsi_k = 2 d'(t2) psi_k.
+    // A = Jr^-1(psi) and dA/dpsi_k, with d and d'(t2) from dual numbers.
     const CoefficientJet jet = coefficient_jet(psi[a].squaredNorm());
-    const Matrix3d K = so3::hat(psi[a]);
-    const Matrix3d K2 = K * K;
-    A[a] = Matrix3d::Identity() + 0.5 * K + jet.f.d * K2;
-    for (int k = 0; k < 3; ++k) {
-      const Matrix3d Ek = so3::hat(Vector3d::Unit(k));
-      dA[a][k] = 0.5 * Ek + 2.0 * jet.df.d * psi[a][k] * K2 + jet.f.d * (Ek * K + K * Ek);
-    }
+    internal::inverse_right_jacobian(psi[a], jet.f.d, jet.df.d, A[a], dA[a]);
   }
 
   VectorU grad_u = VectorU::Zero();
@@ -304,16 +279,9 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   // B = du/dtheta at theta = 0, with y_a = exp(-theta_r) R_r^T (p_a + dp_a - p_r - dp_r)
   // (y_r = 0 identically) and psi_a = log(exp(-theta_r) exp(psi_a) exp(theta_a)).
   MatrixU B = MatrixU::Zero();
+  internal::node_map_jacobian(n, ref, R_ref, y.data(), A.data(), B);
   const int phr = 6 * ref + 3;  // column of the reference node's rotation increment
   const int dr = 6 * ref;       // column of the reference node's position increment
-  for (int a = 0; a < n; ++a) {
-    if (a == ref) continue;
-    B.template block<3, 3>(3 * a, 6 * a) = R_ref.transpose();
-    B.template block<3, 3>(3 * a, dr) = -R_ref.transpose();
-    B.template block<3, 3>(3 * a, phr) = so3::hat(y[a]);
-    B.template block<3, 3>(3 * n + 3 * a, 6 * a + 3) = A[a];
-    B.template block<3, 3>(3 * n + 3 * a, phr) = -A[a].transpose();
-  }
   out.residual = B.transpose().lazyProduct(grad_u);
   out.length_gradients.resize(n_act);
   for (std::size_t i = 0; i < n_act; ++i)
@@ -349,35 +317,7 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
         A[a].lazyProduct(HB.template middleRows<3>(3 * n + 3 * a));
   }
   // Second derivatives of u(theta) contracted with dE/du.
-  for (int a = 0; a < n; ++a) {
-    if (a == ref) continue;
-    const Vector3d gy = grad_u.template segment<3>(3 * a);
-    K.template block<3, 3>(phr, phr) +=
-        0.5 * (gy * y[a].transpose() + y[a] * gy.transpose()) - gy.dot(y[a]) * Matrix3d::Identity();
-    const Matrix3d Hrd = so3::hat(gy) * R_ref.transpose();
-    K.template block<3, 3>(phr, 6 * a) += Hrd;
-    K.template block<3, 3>(phr, dr) -= Hrd;
-    K.template block<3, 3>(6 * a, phr) += Hrd.transpose();
-    K.template block<3, 3>(dr, phr) -= Hrd.transpose();
-    // psi_a = log(exp(-theta_r) exp(psi_a) exp(theta_a)): dpsi = A dtheta_a - A^T dtheta_r
-    // at 0, with A = Jr^-1(psi_a) and Jl^-1(psi) = Jr^-1(psi)^T.
-    const Vector3d gp = grad_u.template segment<3>(3 * n + 3 * a);
-    auto DA = [&](const Vector3d& v) {
-      return Matrix3d(v[0] * dA[a][0] + v[1] * dA[a][1] + v[2] * dA[a][2]);
-    };
-    Matrix3d Haa, Hrr, Har;
-    for (int j = 0; j < 3; ++j) {
-      const Vector3d ej = Vector3d::Unit(j);
-      Haa.col(j) = DA(A[a] * ej).transpose() * gp - 0.5 * (A[a].transpose() * gp).cross(ej);
-      Hrr.col(j) = DA(A[a].transpose() * ej) * gp + 0.5 * (A[a] * gp).cross(ej);
-      Har.col(j) = -DA(A[a].transpose() * ej).transpose() * gp;
-    }
-    const int pha = 6 * a + 3;
-    K.template block<3, 3>(pha, pha) += Haa;
-    K.template block<3, 3>(phr, phr) += Hrr;
-    K.template block<3, 3>(pha, phr) += Har;
-    K.template block<3, 3>(phr, pha) += Har.transpose();
-  }
+  internal::add_node_map_hessian(n, ref, R_ref, y.data(), A.data(), dA.data(), grad_u, K);
   // exp(eta) exp(theta) = exp(eta + theta + eta x theta / 2 + ...): the residual's
   // derivative along the update adds hat(r_rot)/2 per node.
   for (int a = 0; a < n; ++a) {
@@ -403,10 +343,7 @@ void element_string_lengths(const rod::RodModel& model, const std::vector<double
   const std::size_t n_act = model.actuators.size();
   const double s_mid_m = state.s_m[first] + 0.5 * h_m_;
   std::array<Vector3d, n> y, psi;
-  for (int a = 0; a < n; ++a) {
-    y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
-    psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
-  }
+  internal::node_coordinates(state, first, n, ref, q_ref, R_ref, y.data(), psi.data());
   std::vector<double> element_share(n_act, 0.0);
   double N[3], dN_dxi[3];
   for (std::size_t g = 0; g < xi.size(); ++g) {
@@ -478,10 +415,7 @@ std::vector<PointStrain> Discretization::strains(const State& state) const {
     const Eigen::Quaterniond q_ref = state.q_WB[first + ref];
     const Matrix3d R_ref = q_ref.toRotationMatrix();
     std::vector<Vector3d> y(n), psi(n);
-    for (int a = 0; a < n; ++a) {
-      y[a] = R_ref.transpose() * (state.p_W_m[first + a] - state.p_W_m[first + ref]);
-      psi[a] = a == ref ? Vector3d::Zero() : so3::log(q_ref.conjugate() * state.q_WB[first + a]);
-    }
+    internal::node_coordinates(state, first, n, ref, q_ref, R_ref, y.data(), psi.data());
     for (std::size_t g = 0; g < quad_.xi.size(); ++g) {
       shape(order_, quad_.xi[g], N, dN_dxi);
       Vector3d yp = Vector3d::Zero(), ps = Vector3d::Zero(), pp = Vector3d::Zero();

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "beam_fe/beam_fe.hpp"
-#include "beam_fe/dynamics_internal.hpp"
+#include "beam_fe/internal/quadrature.hpp"
 #include "common/so3.hpp"
 #include "rod/probes.hpp"
 
@@ -24,7 +24,7 @@ void Discretization::pose_at(const State& state, double s_m, Eigen::Vector3d& p_
   while (e + 1 < elements_ && element_start_m(e + 1) <= s_m) ++e;
   const double xi = 2.0 * (s_m - element_start_m(e)) / element_length_m(e) - 1.0;
   double N[3], dN[3];
-  dynamics_internal::shape(order_, xi, N, dN);
+  internal::shape(order_, xi, N, dN);
   // The element's interpolation (beam_fe.hpp): p = sum_a N_a p_a; R = R_r exp(sum_a N_a psi_a)
   // with psi_a = log(R_r^T R_a), r the reference node (0 for order 1, the middle one for 2).
   const int first = e * order_;

@@ -11,12 +11,9 @@
 #include <string>
 
 #include "beam_fe/beam_fe.hpp"
-#include "beam_fe/umfpack_loader.hpp"
+#include "beam_fe/internal/klu_refactoring.hpp"
+#include "beam_fe/internal/umfpack_loader.hpp"
 #include "common/error.hpp"
-
-extern "C" {
-#include <klu.h>
-}
 
 namespace tcasim::beam_fe {
 namespace {
@@ -32,60 +29,6 @@ constexpr int kMaxBacktracks = 12;
 constexpr double kChordContraction = 1e-2;
 /// Grow the load increment after a step converging within this many iterations.
 constexpr int kEasyIterations = 4;
-
-/// Accept a refactorization (pivot order of the last full factorization) while the crude
-/// reciprocal condition estimate min|U_kk|/max|U_kk| stays within this factor of the one
-/// of that full factorization; below it a pivot has degraded and KLU pivots afresh.
-constexpr double kRefactorRcondRatio = 1e-3;
-
-/// KLU with the symbolic analysis done once and the numeric factorization redone with the
-/// previous pivot order (klu_refactor) while it stays sound.
-class KluRefactoring {
- public:
-  KluRefactoring() { klu_defaults(&common_); }
-  KluRefactoring(const KluRefactoring&) = delete;
-  KluRefactoring& operator=(const KluRefactoring&) = delete;
-  ~KluRefactoring() {
-    if (numeric_) klu_free_numeric(&numeric_, &common_);
-    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
-  }
-  /// Factorizes K (compressed, the same pattern on every call); false on failure.
-  bool factorize(SpMat& K) {
-    int* Ap = K.outerIndexPtr();
-    int* Ai = K.innerIndexPtr();
-    double* Ax = K.valuePtr();
-    const int n = static_cast<int>(K.rows());
-    if (!symbolic_) {
-      symbolic_ = klu_analyze(n, Ap, Ai, &common_);
-      if (!symbolic_) return false;
-    }
-    if (numeric_) {
-      if (klu_refactor(Ap, Ai, Ax, symbolic_, numeric_, &common_) &&
-          klu_rcond(symbolic_, numeric_, &common_) &&
-          common_.rcond >= kRefactorRcondRatio * rcond_full_) {
-        return true;
-      }
-      klu_free_numeric(&numeric_, &common_);
-    }
-    numeric_ = klu_factor(Ap, Ai, Ax, symbolic_, &common_);
-    if (!numeric_ || !klu_rcond(symbolic_, numeric_, &common_)) return false;
-    rcond_full_ = common_.rcond;
-    return common_.status == KLU_OK;
-  }
-  /// Solves K x = b with the last factorization; false on failure.
-  bool solve(const VectorXd& b, VectorXd& x) {
-    x = b;
-    return numeric_ &&
-           klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_) &&
-           common_.status == KLU_OK;
-  }
-
- private:
-  klu_common common_;
-  klu_symbolic* symbolic_ = nullptr;
-  klu_numeric* numeric_ = nullptr;
-  double rcond_full_ = 0.0;
-};
 
 /// UMFPACK through its plugin (umfpack_plugin_abi.hpp): one factorization object, which
 /// analyses the pattern on its first factorization.
@@ -140,7 +83,8 @@ class LinearSystem {
   bool solve(const VectorXd& b, VectorXd& x) {
     switch (kind_) {
       case LinearSolver::kKlu:
-        return klu_.solve(b, x);
+        x = b;
+        return klu_.solve(x);
       case LinearSolver::kUmfpack:
         return umf_->solve(b, x);
       case LinearSolver::kSparseLu:
@@ -153,7 +97,7 @@ class LinearSystem {
  private:
   LinearSolver kind_;
   bool analysed_ = false;
-  KluRefactoring klu_;
+  internal::KluRefactoring klu_;
   std::unique_ptr<UmfpackFactorization> umf_;  ///< kUmfpack only
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> slu_;
 };

@@ -1,5 +1,5 @@
 // Finding and loading the UMFPACK plugin, as the shipped data is found (common/data_dir.hpp).
-#include "beam_fe/umfpack_loader.hpp"
+#include "beam_fe/internal/umfpack_loader.hpp"
 
 #include <dlfcn.h>
 #include <fmt/format.h>

@@ -4,7 +4,7 @@
 #include <Eigen/UmfPackSupport>
 #include <new>
 
-#include "beam_fe/umfpack_plugin_abi.hpp"
+#include "beam_fe/internal/umfpack_plugin_abi.hpp"
 
 namespace {
 

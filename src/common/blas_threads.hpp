@@ -5,7 +5,7 @@
 /// 0.1 s, before it sleeps. tcasim's factorizations are small and its parallel work runs on its
 /// own threads (`tcasim sweep --jobs N`), so that spinning thread only takes a core away from
 /// them: in a 1000-point shooting sweep (about 0.1 s of work) it ate most of one of two cores.
-/// Only the UMFPACK plugin of the beam FE (beam_fe/umfpack_plugin_abi.hpp) brings OpenBLAS into
+/// Only the UMFPACK plugin of the beam FE (beam_fe/umfpack_plugin.cpp) brings OpenBLAS into
 /// tcasim's programs, at its dlopen; its loader calls limit_blas_threads_of() right after.
 #include <string>
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "cosserat/dynamics_impl.hpp"
+#include "cosserat/internal/dynamics_impl.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/probes.hpp"
 

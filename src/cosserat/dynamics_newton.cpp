@@ -4,7 +4,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "cosserat/dynamics_impl.hpp"
+#include "cosserat/internal/dynamics_impl.hpp"
 
 namespace tcasim::cosserat {
 

@@ -1,5 +1,5 @@
 // Rod dynamics: energies, tensions and elongations of the last converged solve.
-#include "cosserat/dynamics_impl.hpp"
+#include "cosserat/internal/dynamics_impl.hpp"
 
 namespace tcasim::cosserat {
 

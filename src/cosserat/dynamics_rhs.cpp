@@ -2,7 +2,7 @@
 // solve with Kelvin-Voigt damping and the strings, the BDF-alpha rates) and their Jacobian.
 #include <cmath>
 
-#include "cosserat/dynamics_impl.hpp"
+#include "cosserat/internal/dynamics_impl.hpp"
 
 namespace tcasim::cosserat {
 

@@ -5,7 +5,7 @@
 
 #include "common/error.hpp"
 #include "common/lie_series.hpp"
-#include "cosserat/shooting_impl.hpp"
+#include "cosserat/internal/shooting_impl.hpp"
 #include "rod/closed_form.hpp"
 
 namespace tcasim::cosserat {

@@ -1,4 +1,4 @@
-#include "cosserat/integration_level.hpp"
+#include "cosserat/internal/integration_level.hpp"
 
 #include <algorithm>
 #include <cmath>

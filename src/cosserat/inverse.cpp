@@ -12,7 +12,7 @@
 #include "common/error.hpp"
 #include "common/root_finding.hpp"
 #include "common/units.hpp"
-#include "cosserat/inverse_internal.hpp"
+#include "cosserat/internal/inverse_internal.hpp"
 
 namespace tcasim::cosserat {
 

@@ -13,7 +13,7 @@
 #include "common/so3.hpp"
 #include "common/units.hpp"
 #include "cosserat/inverse.hpp"
-#include "cosserat/inverse_internal.hpp"
+#include "cosserat/internal/inverse_internal.hpp"
 
 namespace tcasim::cosserat {
 

@@ -1,8 +1,8 @@
-// The 3-D layout of the shooting problem (cosserat/layout.hpp): the state and unknowns of
+// The 3-D layout of the shooting problem (cosserat/internal/layout.hpp): the state and unknowns of
 // cosserat/shooting.hpp, the right-hand sides of RodRhs (rhs.cpp), and the tip wrench and
 // tip-constraint rows of the residual (docs/conventions.md "Tip conditions").
-#include "cosserat/layout.hpp"
-#include "cosserat/tip_conditions.hpp"
+#include "cosserat/internal/layout.hpp"
+#include "cosserat/internal/tip_conditions.hpp"
 #include "rod/loads.hpp"
 
 namespace tcasim::cosserat::internal {

@@ -1,4 +1,4 @@
-#include "cosserat/lie_rkmk4.hpp"
+#include "cosserat/internal/lie_rkmk4.hpp"
 
 #include <cmath>
 

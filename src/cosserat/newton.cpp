@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "cosserat/shooting_impl.hpp"
+#include "cosserat/internal/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 

@@ -1,4 +1,4 @@
-#include "cosserat/planar.hpp"
+#include "cosserat/internal/planar.hpp"
 
 #include <cassert>
 #include <cmath>

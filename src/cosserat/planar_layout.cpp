@@ -1,9 +1,9 @@
-// The planar reduction as a layout of the shooting problem (cosserat/layout.hpp): when it
-// applies, the planar right-hand sides and tip wrench of cosserat/planar.hpp bound to the
+// The planar reduction as a layout of the shooting problem (cosserat/internal/layout.hpp): when it
+// applies, the planar right-hand sides and tip wrench of cosserat/internal/planar.hpp bound to the
 // problem's parameters, and its unknowns and IVP states mapped to and from the 3-D layout of
 // cosserat/shooting.hpp (docs/conventions.md "Planar reduction").
-#include "cosserat/planar.hpp"
-#include "cosserat/tip_conditions.hpp"
+#include "cosserat/internal/planar.hpp"
+#include "cosserat/internal/tip_conditions.hpp"
 #include "rod/loads.hpp"
 
 namespace tcasim::cosserat::internal {

@@ -1,4 +1,4 @@
-#include "cosserat/problem.hpp"
+#include "cosserat/internal/problem.hpp"
 
 #include <algorithm>
 

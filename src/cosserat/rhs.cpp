@@ -1,11 +1,11 @@
-#include "cosserat/rhs.hpp"
+#include "cosserat/internal/rhs.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <utility>
 
-#include "cosserat/string_system.hpp"
+#include "cosserat/internal/string_system.hpp"
 #include "rod/closed_form.hpp"
 
 namespace tcasim::cosserat::internal {

@@ -1,6 +1,6 @@
 // The shooting solver's driver: construction, the solve sequence (warm or cold start,
 // direct solve, continuation) and results. The stages live in the files named in
-// cosserat/shooting_impl.hpp.
+// cosserat/internal/shooting_impl.hpp.
 #include "cosserat/shooting.hpp"
 
 #include <algorithm>
@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "common/error.hpp"
-#include "cosserat/layout.hpp"
-#include "cosserat/shooting_impl.hpp"
+#include "cosserat/internal/layout.hpp"
+#include "cosserat/internal/shooting_impl.hpp"
 #include "rod/probes.hpp"
 
 namespace tcasim::cosserat {

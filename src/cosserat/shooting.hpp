@@ -33,7 +33,7 @@
 /// Non-convergence is a Summary status, never an exception; a non-finite IVP or a TCA law
 /// DomainError at a trial point is a failed trial (the line search backs off).
 /// Planar problems are solved in the plane with the in-plane states and unknowns
-/// (Options::planar_reduction, cosserat/planar.hpp); Solution::unknowns and tip_state keep
+/// (Options::planar_reduction, cosserat/planar.cpp); Solution::unknowns and tip_state keep
 /// the layouts above.
 #include <Eigen/Core>
 #include <memory>
@@ -79,7 +79,7 @@ enum class JacobianMethod {
 enum class Kinematics {
   /// The flattened state (p, R column-major, ...) by Options::integrator (RK4 or CVODE).
   kFlat,
-  /// Fourth-order Runge-Kutta-Munthe-Kaas steps on SE(3) (cosserat/lie_rkmk4.hpp) with
+  /// Fourth-order Runge-Kutta-Munthe-Kaas steps on SE(3) (cosserat/lie_rkmk4.cpp) with
   /// `integrator.steps` equal steps (needs integrator.method = kRk4): exact for constant
   /// strains at any step count, order 4 otherwise, R orthogonal to round-off.
   kLieGroup,

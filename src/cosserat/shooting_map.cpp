@@ -1,6 +1,6 @@
 // The shooting map: r(x) and dr/dx by one IVP from the unknowns x on the active level, and
 // the memo of the last accepted IVP.
-#include "cosserat/shooting_impl.hpp"
+#include "cosserat/internal/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 

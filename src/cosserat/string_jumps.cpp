@@ -5,7 +5,7 @@
 // is the anchor's point force and moment on the body.
 #include <algorithm>
 
-#include "cosserat/problem.hpp"
+#include "cosserat/internal/problem.hpp"
 
 namespace tcasim::cosserat::internal {
 

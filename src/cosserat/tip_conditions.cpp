@@ -1,4 +1,4 @@
-#include "cosserat/tip_conditions.hpp"
+#include "cosserat/internal/tip_conditions.hpp"
 
 #include <algorithm>
 #include <cmath>

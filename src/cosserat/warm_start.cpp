@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "cosserat/shooting_impl.hpp"
+#include "cosserat/internal/shooting_impl.hpp"
 
 namespace tcasim::cosserat {
 

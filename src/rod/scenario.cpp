@@ -19,7 +19,7 @@
 #include "common/units.hpp"
 #include "rod/json_file.hpp"
 #include "rod/reference_path.hpp"
-#include "rod/scenario_reading.hpp"
+#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod {
 

@@ -13,7 +13,7 @@
 #include "common/units.hpp"
 #include "rod/reference_path.hpp"
 #include "rod/scenario.hpp"
-#include "rod/scenario_reading.hpp"
+#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
 Section parse_section(const json& j, const std::string& path, double length_m) {

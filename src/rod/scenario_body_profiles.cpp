@@ -7,7 +7,7 @@
 
 #include "common/error.hpp"
 #include "rod/profile.hpp"
-#include "rod/scenario_reading.hpp"
+#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

@@ -1,7 +1,7 @@
 // The `probes` list of a scenario (docs/scenario-format.md "Probes and frames").
 #include <cctype>
 
-#include "rod/scenario_reading.hpp"
+#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

@@ -15,7 +15,7 @@
 #include "common/error.hpp"
 #include "common/units.hpp"
 #include "rod/json_file.hpp"
-#include "rod/scenario_reading.hpp"
+#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

@@ -1,7 +1,7 @@
-// The UMFPACK back end as a plugin (beam_fe/umfpack_plugin_abi.hpp): a plugin that cannot be
-// loaded is an InputError naming linear_solver, umfpack, the path tried and why; the solver
-// never crashes on it; once loaded, OpenBLAS's server threads (started by its dlopen) are gone.
-// Its own program: one process sees the plugin's whole history (not loaded, then loaded).
+// The UMFPACK back end as a plugin (beam_fe/internal/umfpack_plugin_abi.hpp): a plugin that
+// cannot be loaded is an InputError naming linear_solver, umfpack, the path tried and why; the
+// solver never crashes on it; once loaded, OpenBLAS's server threads (started by its dlopen) are
+// gone. Its own program: one process sees the plugin's whole history (not loaded, then loaded).
 #include <gtest/gtest.h>
 #include <stdlib.h>  // setenv, unsetenv
 

@@ -1,7 +1,7 @@
 // Tests of the Lie-group (RKMK4) kinematics of the shooting solver: the SE(3) exponential and
 // its derivative, exactness for constant strains at any step count, observed order 4 with
 // gravity, sensitivities against central differences, and agreement with RK4.
-#include "cosserat/lie_rkmk4.hpp"
+#include "cosserat/internal/lie_rkmk4.hpp"
 
 #include <gtest/gtest.h>
 

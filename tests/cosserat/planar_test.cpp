@@ -1,7 +1,7 @@
-// Tests of the planar reduction of the shooting solver (cosserat/planar.hpp): its
+// Tests of the planar reduction of the shooting solver (cosserat/internal/planar.hpp): its
 // sensitivity equations against differences of its RHS, and its solves against the 3-D
 // solver on the same discretization.
-#include "cosserat/planar.hpp"
+#include "cosserat/internal/planar.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "cosserat/layout.hpp"
-#include "cosserat/rhs.hpp"
+#include "cosserat/internal/layout.hpp"
+#include "cosserat/internal/rhs.hpp"
 #include "rod/scenario.hpp"
 #include "support/varying_body.hpp"
 

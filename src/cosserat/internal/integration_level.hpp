@@ -2,7 +2,7 @@
 /// One discretization level of the shooting IVP: the integrator of the state and, if asked,
 /// of the state with its forward sensitivities, by either pose integration
 /// (Options::kinematics): the flat ode::Integrator (RK4/6/8 or CVODE) or the Lie-group
-/// RKMK4 (cosserat/lie_rkmk4.hpp). Both report failure the same way here: integrate()
+/// RKMK4 (cosserat/internal/lie_rkmk4.hpp). Both report failure the same way here: integrate()
 /// returns false when the integration failed or the end state is not finite.
 /// Internal to the shooting solver.
 #include <Eigen/Core>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/ode.hpp"
-#include "cosserat/lie_rkmk4.hpp"
+#include "cosserat/internal/lie_rkmk4.hpp"
 #include "cosserat/shooting.hpp"
 
 namespace tcasim::cosserat::internal {

@@ -2,23 +2,24 @@
 /// Right-hand side of the shooting IVP and of its forward sensitivities (the variational
 /// equations), docs/conventions.md "Body-frame ODEs solved by the shooting solver", with the
 /// IVP parameters (string tensions c_i T_i, distributed load) of the current evaluation.
-/// The layout (cosserat/layout.hpp) installs the right-hand sides the IVP integrates: these
-/// (3-D) or the planar reduction's (cosserat/planar.hpp). Internal to the shooting solver.
+/// The layout (cosserat/internal/layout.hpp) installs the right-hand sides the IVP integrates:
+/// these (3-D) or the planar reduction's (cosserat/internal/planar.hpp). Internal to the shooting
+/// solver.
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
 
 #include "common/ode.hpp"
-#include "cosserat/integration_level.hpp"
-#include "cosserat/layout.hpp"
-#include "cosserat/problem.hpp"
+#include "cosserat/internal/integration_level.hpp"
+#include "cosserat/internal/layout.hpp"
+#include "cosserat/internal/problem.hpp"
 #include "cosserat/shooting.hpp"
 #include "tca/tca.hpp"
 
 namespace tcasim::cosserat::internal {
 
 struct RodRhs : RodProblem {
-  /// layout: the state layout and its right-hand sides (cosserat/layout.hpp);
+  /// layout: the state layout and its right-hand sides (cosserat/internal/layout.hpp);
   /// sensitivities: also build the variational right-hand side `rhs_sens` (not with more
   /// than kMaxSensitivityUnknowns unknowns).
   RodRhs(const rod::RodModel& m, std::unique_ptr<Layout> layout, bool sensitivities);
@@ -116,7 +117,7 @@ struct RodRhs : RodProblem {
   std::vector<double> cT;  // count * tension per actuator
   Vec3 f_ext_W = Vec3::Zero();
   std::vector<std::vector<tca::Segment>> scaled_segments;  // TCA segments at the load fraction
-  std::unique_ptr<Layout> layout;  // 3-D or the planar reduction (cosserat/layout.hpp)
+  std::unique_ptr<Layout> layout;  // 3-D or the planar reduction (cosserat/internal/layout.hpp)
   ode::RhsFunction rhs;            // y' = f(s, y), installed by the layout
   ode::RhsFunction rhs_sens;       // (y, Y_j)' (sensitivities only), installed by the layout
 

@@ -1,6 +1,6 @@
 #pragma once
 /// The layout of a shooting problem: the few operations in which the 3-D problem (the state
-/// and unknowns of cosserat/shooting.hpp) and its planar reduction (cosserat/planar.hpp,
+/// and unknowns of cosserat/shooting.hpp) and its planar reduction (cosserat/internal/planar.hpp,
 /// docs/conventions.md "Planar reduction") differ. The solver (ShootingSolver::Impl on the
 /// layers RodProblem <- RodRhs <- TipConditions) is written once against this interface;
 /// its two implementations are

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "cosserat/integration_level.hpp"
+#include "cosserat/internal/integration_level.hpp"
+#include "cosserat/internal/tip_conditions.hpp"
 #include "cosserat/shooting.hpp"
-#include "cosserat/tip_conditions.hpp"
 
 namespace tcasim::cosserat {
 

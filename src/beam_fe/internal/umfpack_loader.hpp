@@ -1,7 +1,7 @@
 #pragma once
 /// Loading the UMFPACK plugin (umfpack_plugin_abi.hpp) for the solver; the public side is
 /// in beam_fe.hpp (umfpack_plugin_candidates, load_linear_solver).
-#include "beam_fe/umfpack_plugin_abi.hpp"
+#include "beam_fe/internal/umfpack_plugin_abi.hpp"
 
 namespace tcasim::beam_fe {
 

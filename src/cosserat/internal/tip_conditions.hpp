@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "cosserat/rhs.hpp"
+#include "cosserat/internal/rhs.hpp"
 #include "cosserat/shooting.hpp"
 
 namespace tcasim::cosserat::internal {

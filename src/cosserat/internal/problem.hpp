@@ -6,9 +6,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "cosserat/layout.hpp"
+#include "cosserat/internal/layout.hpp"
+#include "cosserat/internal/string_system.hpp"
 #include "cosserat/shooting.hpp"
-#include "cosserat/string_system.hpp"
 #include "rod/model.hpp"
 
 namespace tcasim::cosserat::internal {
@@ -20,7 +20,7 @@ inline constexpr int kMaxSensitivityUnknowns = 16;
 inline bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
 struct RodProblem {
-  /// d: the sizes of the layout (cosserat/layout.hpp: 3-D or the planar reduction's).
+  /// d: the sizes of the layout (cosserat/internal/layout.hpp: 3-D or the planar reduction's).
   RodProblem(const rod::RodModel& m, const LayoutDims& d);
 
   const rod::RodModel& model;
@@ -78,8 +78,7 @@ struct RodProblem {
   /// The stiffnesses, omega* and weight factor at s (one-sided limit `side` at a jump).
   void properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
   /// properties() of the model itself: omega* without the homotopy below (mu = 1).
-  void model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
-                        double& wf) const;
+  void model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws, double& wf) const;
   /// The homotopy's omega* for the model's omega*(s) = ws: omega*(0) + mu (ws - omega*(0)).
   Vec3 homotopy_omega_star(const Vec3& ws) const {
     return omega_star + omega_star_fraction * (ws - omega_star);

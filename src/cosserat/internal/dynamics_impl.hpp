@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cosserat/dynamics.hpp"
-#include "cosserat/dynamics_section.hpp"
-#include "cosserat/string_system.hpp"
+#include "cosserat/internal/dynamics_section.hpp"
+#include "cosserat/internal/string_system.hpp"
 #include "tca/tca.hpp"
 
 namespace tcasim::cosserat {
@@ -189,7 +189,7 @@ struct RodDynamics::Impl {
   /// Whether actuator a's string runs at stage slot `slot` (the tip slot: the last step).
   bool runs(int slot, int a) const {
     return !string_knots || step_runs[static_cast<std::size_t>(std::min(slot / 4, N - 1))]
-                                      [static_cast<std::size_t>(a)] != 0;
+                                     [static_cast<std::size_t>(a)] != 0;
   }
   /// Arc length and side at which the routing is read at stage slot `slot` (s: the stage's).
   double routing_s(int slot, double s) const {
@@ -202,9 +202,9 @@ struct RodDynamics::Impl {
     return slot >= 4 * N || slot % 4 == 3 ? rod::Side::kLeft : rod::Side::kRight;
   }
   double F_c = 1.0;
-  Eigen::VectorXd scale;  // per state component (D)
-  Eigen::ArrayXd inv_scale_;  // 1 / scale
-  Eigen::VectorXd scale_z_;   // unknown_scale() of the current scales (set_scales)
+  Eigen::VectorXd scale;        // per state component (D)
+  Eigen::ArrayXd inv_scale_;    // 1 / scale
+  Eigen::VectorXd scale_z_;     // unknown_scale() of the current scales (set_scales)
   Eigen::ArrayXd inv_scale_z_;  // 1 / scale_z_
   // Per slot: history of the current step, data of the last evaluation (trial), of the
   // last two converged steps and the time derivative at the last one.

@@ -27,23 +27,25 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 /// Kelvin-Voigt viscosity eta at s [Pa s]: `override_Pa_s` when given (constant along s), else
 /// the model's body.material.viscosity_Pa_s (a constant or a profile along s).
-double viscosity_at(const rod::RodModel& model, double s_m, const std::optional<double>& override_Pa_s);
+double viscosity_at(const rod::RodModel& model, double s_m,
+                    const std::optional<double>& override_Pa_s);
 
 /// Nodal forces int D^T sigma ds of the stress sigma = sigma_h + C eps per quadrature point
 /// (C = diag(stiffness), 6 per point, in Discretization::strains order; C = 0: a fixed stress)
 /// and, with K, their tangent under R <- R exp(eta), p <- p + dp, added into r (dof order of
 /// Discretization) and K.
 void add_viscous_forces(const Discretization& disc, const State& state,
-                        const std::vector<Vector6d>& sigma_h, const std::vector<Vector6d>& stiffness,
-                        Eigen::VectorXd& r, Eigen::SparseMatrix<double>* K);
+                        const std::vector<Vector6d>& sigma_h,
+                        const std::vector<Vector6d>& stiffness, Eigen::VectorXd& r,
+                        Eigen::SparseMatrix<double>* K);
 
 /// The strain history of every quadrature point and its viscous stress.
 class StrainRateHistory {
  public:
   /// `disc` must outlive this object; the viscosity of viscosity_at(model, s, override).
   StrainRateHistory(const Discretization& disc, const rod::RodModel& model,
-                    const std::optional<double>& viscosity_override_Pa_s,
-                    const AlphaParameters& ap, double dt_s);
+                    const std::optional<double>& viscosity_override_Pa_s, const AlphaParameters& ap,
+                    double dt_s);
   /// At rest in `state`: eps(0) from the state, eps_t = a_eps = 0.
   void reset(const State& state);
   /// Adds the viscous forces (and their tangent) at the trial state.
