@@ -426,14 +426,15 @@ def card_measured_tca(out_dir):
     if not rows:
         return None
     nominal = [r for r in rows if r.get("tca") == "measured" and r.get("parameters") == "nominal"]
+    label = {"measured": "measured d0", "paper-d0": "paper d0 = 2DL/l"}
     lines = []
     for r in rows:
         if r.get("parameters") == "nominal":
-            lines.append(f"{r['tca']} d0, nominal: {number(r.get('passive_stiffness_N_mm')):.3f} N/mm "
+            lines.append(f"{label.get(r['tca'], r['tca'])}, nominal: {number(r.get('passive_stiffness_N_mm')):.3f} N/mm "
                          f"(measured {number(r.get('measured_passive_stiffness_N_mm')):.3f})")
     for f in fits:
         if f.get("parameter") == "shear_modulus":
-            lines.append(f"{f['tca']} d0, fitted G = {1e-9 * number(f.get('value')):.3g} GPa "
+            lines.append(f"{label.get(f['tca'], f['tca'])}, fitted G = {1e-9 * number(f.get('value')):.3g} GPa "
                          f"(published {1e-9 * number(f.get('published_lo')):.3g} to "
                          f"{1e-9 * number(f.get('published_hi')):.3g})")
     headline = (f"stiffness ratio {number(nominal[0].get('stiffness_ratio')):.2f}" if nominal else "-")
