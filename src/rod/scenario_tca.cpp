@@ -105,15 +105,12 @@ std::shared_ptr<const tca::Tca> parse_tca(const json& j, const std::string& path
       if (!has_l && !has_alpha) {
         // [docs/conventions.md "Measured fiber diameter"] l^2 = (pi Dm n)^2 + L^2.
         p.fiber_length_m = tca::fiber_length_from_coil_count(L, Dm, *n);
-      } else {
+      } else if (!has_l || p.fiber_length_m > L) {  // (l <= L: refused by tca::Tca, naming l)
         // Over-determined: the helix of l (or alpha0) and Dm has n = l cos(alpha0)/(pi Dm).
         const std::string other = has_l ? "fiber_length_m" : "pitch_angle_deg";
         const double n_geometry =
-            has_l
-                ? (p.fiber_length_m > L
-                       ? std::sqrt(p.fiber_length_m * p.fiber_length_m - L * L) / (units::kPi * Dm)
-                       : 0.0)
-                : tca::coil_count_from_pitch(L, Dm, alpha_rad);
+            has_l ? std::sqrt(p.fiber_length_m * p.fiber_length_m - L * L) / (units::kPi * Dm)
+                  : tca::coil_count_from_pitch(L, Dm, alpha_rad);
         require(std::abs(*n - n_geometry) <= tca::kGeometryRelativeTolerance * n_geometry,
                 o.key(n_key), o.positive(n_key),
                 fmt::format("disagrees with {} = {}: that helix (mean diameter outer_diameter_m - "

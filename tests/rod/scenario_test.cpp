@@ -814,6 +814,11 @@ TEST(RejectScenario, OverDeterminedTcaGeometryThatDisagreesNamesBothKeys) {
   doc = measured_gripper();
   doc["tcas"]["gripper-tca"]["pitch_angle_deg"] = 20;
   expect_rejected(doc, "tcas.gripper-tca.coils_per_m", "732", "disagrees with pitch_angle_deg");
+  // A fiber shorter than the coil is refused as such, not as a disagreement.
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["fiber_length_m"] = 0.02;
+  expect_rejected(doc, "tcas.gripper-tca.coiled_length_m", "0.025",
+                  "must be < fiber_length_m = 0.02");
 }
 
 TEST(RejectScenario, CoilCountWithoutMeasuredFiberDiameter) {
