@@ -119,6 +119,9 @@ PLOT_DESCRIPTIONS = {
     "table1.png": "Table I: grasp temperature against grasped mass, model curves with the measured and the "
                   "paper's values",
     "fig8.png": "Fig. 8: blocked-tip force against temperature for each material",
+    "measured_tca.png": "Measured TCA: force against strain of a nylon 6,6 monocoil at 25 and 120 degC, model "
+                        "(measured and paper fiber diameter) against the measured isometric tests, nominal and "
+                        "fitted parameters, and the fitted values beside the published ranges",
     "crosscheck.png": "Cross-check: difference between the Cosserat shooting and the beam FE solutions against the "
                       "number of elements, per scenario",
     "convergence.png": "Convergence: FE error against element size per scenario and element order, with the "
@@ -326,6 +329,8 @@ KNOWN_TABLES = [
     ("table1_grasp.csv", "Table I: grasping (paper comparison)",
      ["material", "f12_form", "calibration", "mass_g", "temperature_degC", "paper_degC", "measured_degC",
       "blocked_force_rel_error", "iterations", "converged"]),
+    ("measured_tca_summary.csv", "Measured TCA: passive stiffness and elongation at 1 N, model against measurement"),
+    ("measured_tca_fit.csv", "Measured TCA: fitted shear modulus and expansion beside the published ranges"),
     ("fig8_force.csv", "Fig. 8: force (paper comparison)",
      ["material", "temperature_degC", "force_N", "wire_taut", "pinned_force_N", "free_tip_x_m", "free_tip_z_m"]),
     ("crosscheck.csv", "Cross-check: Cosserat shooting vs beam FE",
@@ -413,6 +418,28 @@ def card_fig5(out_dir):
         lines.append(f"elongation at 160 degC: {1e3 * elong[0]:.1f} to {1e3 * elong[1]:.1f} mm")
     return ("Fig. 5: TCA onset temperature",
             f"{onset[0]:.1f} to {onset[1]:.1f} degC" if onset else "-", lines, None, "validate_fig5_tca")
+
+
+def card_measured_tca(out_dir):
+    rows = read_csv(out_dir / "validate_measured_tca" / "measured_tca_summary.csv")
+    fits = read_csv(out_dir / "validate_measured_tca" / "measured_tca_fit.csv")
+    if not rows:
+        return None
+    nominal = [r for r in rows if r.get("tca") == "measured" and r.get("parameters") == "nominal"]
+    label = {"measured": "measured d0", "paper-d0": "paper d0 = 2DL/l"}
+    lines = []
+    for r in rows:
+        if r.get("parameters") == "nominal":
+            lines.append(f"{label.get(r['tca'], r['tca'])}, nominal: {number(r.get('passive_stiffness_N_mm')):.3f} N/mm "
+                         f"(measured {number(r.get('measured_passive_stiffness_N_mm')):.3f})")
+    for f in fits:
+        if f.get("parameter") == "shear_modulus":
+            lines.append(f"{label.get(f['tca'], f['tca'])}, fitted G = {1e-9 * number(f.get('value')):.3g} GPa "
+                         f"(published {1e-9 * number(f.get('published_lo')):.3g} to "
+                         f"{1e-9 * number(f.get('published_hi')):.3g})")
+    headline = (f"stiffness ratio {number(nominal[0].get('stiffness_ratio')):.2f}" if nominal else "-")
+    return ("Measured TCA: nylon monocoil, model vs isometric tests", headline, lines, None,
+            "validate_measured_tca")
 
 
 def card_fig6(out_dir):
@@ -589,7 +616,7 @@ def card_speed(out_dir, timing, run):
 def dashboard_cards(out_dir, timing, run):
     cards, errors = [], []
     for make in (card_table1, card_fig5, card_fig6, card_fig8, card_crosscheck, card_orders, card_dynamics,
-                 card_dynamic_crosscheck):
+                 card_dynamic_crosscheck, card_measured_tca):
         try:
             c = make(out_dir)
         except (KeyError, ValueError, TypeError, ZeroDivisionError, statistics.StatisticsError) as e:

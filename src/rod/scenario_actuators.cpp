@@ -71,18 +71,18 @@ Routing parse_spline(const json& j, const std::string& path, const Section& sect
   for (std::size_t i = 0; i < s.size(); ++i) {
     const std::string ki = fmt::format("{}[{}]", o.key("s_m"), i);
     r.knot_s_m.push_back(as_number(s[i], ki));
-    require(r.knot_s_m.back() >= 0.0 && r.knot_s_m.back() <= length_m, ki, r.knot_s_m.back(),
-            fmt::format("must lie inside the body [0, {}] m (body.length_m)",
-                        format_value(length_m)));
+    require(
+        r.knot_s_m.back() >= 0.0 && r.knot_s_m.back() <= length_m, ki, r.knot_s_m.back(),
+        fmt::format("must lie inside the body [0, {}] m (body.length_m)", format_value(length_m)));
     require(i == 0 || r.knot_s_m[i] > r.knot_s_m[i - 1], ki, r.knot_s_m.back(),
             fmt::format("must be greater than s_m[{}] = {} (knots strictly increasing)", i - 1,
                         i > 0 ? format_value(r.knot_s_m[i - 1]) : std::string()));
   }
   const json& p = o.required("offset_m");
   if (!p.is_array() || p.size() != s.size()) {
-    throw InputError(o.key("offset_m"), show(p),
-                     fmt::format("must be an array of {} points [x, y], one per entry of s_m",
-                                 s.size()));
+    throw InputError(
+        o.key("offset_m"), show(p),
+        fmt::format("must be an array of {} points [x, y], one per entry of s_m", s.size()));
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
     const std::string ki = fmt::format("{}[{}]", o.key("offset_m"), i);
@@ -341,9 +341,15 @@ double rest_length(const Obj& o, const Actuator& a, const RodModel& model) {
   }
   const double pre = a.pre_elongation_m;
   const std::string pre_key = o.key("pre_elongation_m");
-  if (p.kind == tca::Kind::kExtension) {
+  if (p.kind == tca::Kind::kExtension && !p.fiber_diameter_m) {
     require(pre >= 0.0, pre_key, pre,
             "must be >= 0 for an extension TCA (its coils cannot be shorter than closed)");
+  } else if (a.drive.tca->has_coil_contact()) {
+    const double dc = a.drive.tca->closed_elongation_m();
+    require(pre >= dc, pre_key, pre,
+            fmt::format("must be >= n d0 - L = {} m of TCA '{}' (its coils cannot be shorter than "
+                        "closed: closed length n d0 = {} m)",
+                        format_value(dc), a.drive.tca_id, format_value(p.coiled_length_m + dc)));
   }
   // delta = l (sin alpha - sin alpha0) with alpha in (0, 90) deg: -L < delta < l - L.
   require(
@@ -366,8 +372,7 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
               {"name", "comment", "routing", "count", "drive", "pre_elongation_m", "span_m"});
   Actuator a;
   a.name = o.nonempty_string("name");
-  a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section,
-                            model.length_m);
+  a.routing = parse_routing(o.required("routing"), o.key("routing"), model.section, model.length_m);
   if (o.has("count")) {
     // Parsed non-negative integers are unsigned in nlohmann::json (too large for long long
     // possibly); 1e9 or 2.0 are floats, which are refused.

@@ -26,32 +26,101 @@ std::shared_ptr<const tca::Tca> parse_tca(const json& j, const std::string& path
   (void)base_dir;
   const Obj o(j, path,
               {"kind", "coiled_length_m", "fiber_length_m", "pitch_angle_deg", "outer_diameter_m",
-               "twist_turns", "f12_form", "material", "comment", "thermal"});
+               "twist_turns", "f12_form", "material", "comment", "thermal", "fiber_diameter_m",
+               "coil_count", "coils_per_m"});
   tca::Parameters p;
   p.kind = o.choice("kind", {"extension", "contraction"}) == "extension" ? tca::Kind::kExtension
                                                                          : tca::Kind::kContraction;
   p.coiled_length_m = o.positive("coiled_length_m");
   const bool has_l = o.has("fiber_length_m");
   const bool has_alpha = o.has("pitch_angle_deg");
+  const bool has_d0 = o.has("fiber_diameter_m");
+  const bool has_count = o.has("coil_count");
+  const bool has_per_m = o.has("coils_per_m");
   if (has_l && has_alpha) {
     throw InputError(o.key("pitch_angle_deg"), show(o.required("pitch_angle_deg")),
                      "must not be given together with fiber_length_m (give exactly one)");
   }
-  if (!has_l && !has_alpha) {
+  if (!has_d0) {
+    // The paper's conversions derive n from l and D: a coil count needs the measured d0.
+    for (const char* k : {"coil_count", "coils_per_m"}) {
+      if (o.has(k)) {
+        throw InputError(o.key(k), show(o.required(k)),
+                         "requires fiber_diameter_m (without it n = 2 cos(alpha0) l/(pi D) follows "
+                         "from fiber_length_m or pitch_angle_deg)");
+      }
+    }
+    if (!has_l && !has_alpha) {
+      throw InputError(o.key("fiber_length_m"), "(missing)",
+                       "is required unless pitch_angle_deg is given (give exactly one)");
+    }
+  } else if (!has_l && !has_alpha && !has_count && !has_per_m) {
     throw InputError(o.key("fiber_length_m"), "(missing)",
-                     "is required unless pitch_angle_deg is given (give exactly one)");
+                     "is required unless pitch_angle_deg, coil_count or coils_per_m is given "
+                     "(with fiber_diameter_m, one of them determines the helix)");
   }
+  double alpha_rad = 0.0;
   if (has_l) {
     p.fiber_length_m = o.positive("fiber_length_m");
-  } else {
+  } else if (has_alpha) {
     const double alpha_deg = o.number("pitch_angle_deg");
     require(alpha_deg > 0.0 && alpha_deg < 90.0, o.key("pitch_angle_deg"), alpha_deg,
             "must lie in (0, 90)");
-    p.fiber_length_m =
-        tca::fiber_length_from_pitch(p.coiled_length_m, units::deg_to_rad(alpha_deg));
+    alpha_rad = units::deg_to_rad(alpha_deg);
+    p.fiber_length_m = tca::fiber_length_from_pitch(p.coiled_length_m, alpha_rad);
   }
   p.outer_diameter_m = o.positive("outer_diameter_m");
   p.twist_turns = o.positive("twist_turns");
+  if (has_d0) {
+    const double d0 = o.positive("fiber_diameter_m");
+    const double D = p.outer_diameter_m, L = p.coiled_length_m;
+    require(2.0 * d0 < D, o.key("fiber_diameter_m"), d0,
+            fmt::format("must be < outer_diameter_m/2 = {}: a fiber this thick leaves no coil "
+                        "(inner diameter D - 2 d0 must be > 0)",
+                        format_value(0.5 * D)));
+    p.fiber_diameter_m = d0;
+    const double Dm = D - d0;  // mean coil diameter
+    // The coil count n, from coil_count or coils_per_m x L (both: they must agree).
+    std::optional<double> n;
+    std::string n_key;
+    if (has_count) {
+      n = o.positive("coil_count");
+      n_key = "coil_count";
+    }
+    if (has_per_m) {
+      const double n_per = o.positive("coils_per_m") * L;
+      if (n) {
+        require(
+            std::abs(n_per - *n) <= tca::kGeometryRelativeTolerance * *n, o.key("coils_per_m"),
+            o.positive("coils_per_m"),
+            fmt::format("gives coils_per_m x coiled_length_m = {} coils, which disagrees with "
+                        "coil_count = {} by more than {} relative",
+                        format_value(n_per), format_value(*n), tca::kGeometryRelativeTolerance));
+      } else {
+        n = n_per;
+        n_key = "coils_per_m";
+      }
+    }
+    if (n) {
+      if (!has_l && !has_alpha) {
+        // [docs/conventions.md "Measured fiber diameter"] l^2 = (pi Dm n)^2 + L^2.
+        p.fiber_length_m = tca::fiber_length_from_coil_count(L, Dm, *n);
+      } else if (!has_l || p.fiber_length_m > L) {  // (l <= L: refused by tca::Tca, naming l)
+        // Over-determined: the helix of l (or alpha0) and Dm has n = l cos(alpha0)/(pi Dm).
+        const std::string other = has_l ? "fiber_length_m" : "pitch_angle_deg";
+        const double n_geometry =
+            has_l ? std::sqrt(p.fiber_length_m * p.fiber_length_m - L * L) / (units::kPi * Dm)
+                  : tca::coil_count_from_pitch(L, Dm, alpha_rad);
+        require(std::abs(*n - n_geometry) <= tca::kGeometryRelativeTolerance * n_geometry,
+                o.key(n_key), o.positive(n_key),
+                fmt::format("disagrees with {} = {}: that helix (mean diameter outer_diameter_m - "
+                            "fiber_diameter_m = {} m) has n = {} coils; the difference exceeds "
+                            "{} relative",
+                            other, show(o.required(other)), format_value(Dm),
+                            format_value(n_geometry), tca::kGeometryRelativeTolerance));
+      }
+    }
+  }
 
   const json& mj = o.required("material");
   tca::Material material;

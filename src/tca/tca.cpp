@@ -155,6 +155,18 @@ double fiber_length_from_pitch(double coiled_length_m, double pitch_angle_rad) {
   return coiled_length_m / std::sin(pitch_angle_rad);
 }
 
+double fiber_length_from_coil_count(double coiled_length_m, double mean_diameter_m,
+                                    double coil_count) {
+  // Unrolled helix (docs/conventions.md "Measured fiber diameter"): l^2 = (pi Dm n)^2 + L^2.
+  return std::hypot(kPi * mean_diameter_m * coil_count, coiled_length_m);
+}
+
+double coil_count_from_pitch(double coiled_length_m, double mean_diameter_m,
+                             double pitch_angle_rad) {
+  // tan(alpha0) = L / (pi Dm n).
+  return coiled_length_m / (kPi * mean_diameter_m * std::tan(pitch_angle_rad));
+}
+
 Tca::Tca(const Parameters& parameters, Material material)
     : p_(parameters), material_(std::move(material)) {
   const double L = p_.coiled_length_m, l = p_.fiber_length_m, D = p_.outer_diameter_m;
@@ -163,19 +175,58 @@ Tca::Tca(const Parameters& parameters, Material material)
           fmt::format("must be < fiber_length_m = {}", format_value(l)));
   require(D > 0.0, "outer_diameter_m", D, "must be > 0");
   require(p_.twist_turns > 0.0, "twist_turns", p_.twist_turns, "must be > 0");
-  // [Pawlowski2019] Sec. II conversions, as printed ("effective" values, see conventions):
-  // alpha0 = asin(L/l), n = 2 cos(alpha0) l/(pi D), phi0 = 2 pi N, d0 = 2 D L/l.
-  alpha0_ = std::asin(L / l);
-  n_ = 2.0 * std::cos(alpha0_) * l / (kPi * D);
-  phi0_ = 2.0 * kPi * p_.twist_turns;
-  d0_ = 2.0 * D * L / l;
-  require(d0_ < D, "coiled_length_m", L,
-          fmt::format("must be < fiber_length_m/2 = {} so that the fiber diameter d0 = 2 D L/l "
-                      "is below outer_diameter_m",
-                      format_value(0.5 * l)));
-  require(n_ >= 1.0, "outer_diameter_m", D,
-          fmt::format("gives n = 2 cos(alpha0) l/(pi D) = {} coils; must give n >= 1",
-                      format_value(n_)));
+  if (!p_.fiber_diameter_m) {
+    // [Pawlowski2019] Sec. II conversions, as printed ("effective" values, see conventions):
+    // alpha0 = asin(L/l), n = 2 cos(alpha0) l/(pi D), phi0 = 2 pi N, d0 = 2 D L/l.
+    alpha0_ = std::asin(L / l);
+    n_ = 2.0 * std::cos(alpha0_) * l / (kPi * D);
+    phi0_ = 2.0 * kPi * p_.twist_turns;
+    d0_ = 2.0 * D * L / l;
+    require(d0_ < D, "coiled_length_m", L,
+            fmt::format("must be < fiber_length_m/2 = {} so that the fiber diameter d0 = 2 D L/l "
+                        "is below outer_diameter_m",
+                        format_value(0.5 * l)));
+    require(n_ >= 1.0, "outer_diameter_m", D,
+            fmt::format("gives n = 2 cos(alpha0) l/(pi D) = {} coils; must give n >= 1",
+                        format_value(n_)));
+    // Made closed (extension) or modelled open without a limit (contraction): -L is the flat
+    // coil, the end of the domain of Eq. (5).
+    closed_elongation_ = p_.kind == Kind::kExtension ? 0.0 : -L;
+  } else {
+    const double d0 = *p_.fiber_diameter_m;
+    require(d0 > 0.0, "fiber_diameter_m", d0, "must be > 0");
+    require(2.0 * d0 < D, "fiber_diameter_m", d0,
+            fmt::format("must be < outer_diameter_m/2 = {}: a fiber this thick leaves no coil "
+                        "(inner diameter D - 2 d0 must be > 0)",
+                        format_value(0.5 * D)));
+    // Helix of mean diameter Dm = D - d0 (docs/conventions.md "Measured fiber diameter"):
+    // L = l sin(alpha0), pi Dm n = l cos(alpha0), phi0 = 2 pi N.
+    const double Dm = D - d0;
+    alpha0_ = std::asin(L / l);
+    n_ = l * std::cos(alpha0_) / (kPi * Dm);
+    phi0_ = 2.0 * kPi * p_.twist_turns;
+    d0_ = d0;
+    require(n_ >= 1.0, "fiber_length_m", l,
+            fmt::format("gives n = l cos(alpha0)/(pi (D - d0)) = {} coils; must give n >= 1",
+                        format_value(n_)));
+    // Closed length n d0: coils of pitch L/n below the fiber diameter would overlap. A coil
+    // wound closed (n d0 = L up to the measurement tolerance) sits at its closed length.
+    const double closed_length_m = n_ * d0;
+    require(closed_length_m <= L * (1.0 + kGeometryRelativeTolerance), "fiber_diameter_m", d0,
+            fmt::format("must be <= the coil pitch L/n = {} m (n = {} coils over coiled_length_m "
+                        "= {}): the coils would overlap (closed length n d0 = {} m > L, beyond "
+                        "{} relative)",
+                        format_value(L / n_), format_value(n_), format_value(L),
+                        format_value(closed_length_m), kGeometryRelativeTolerance));
+    closed_elongation_ = std::min(0.0, closed_length_m - L);
+    // Twist pitch l/N (fiber length per twist turn) at least d0: the surface bias angle
+    // atan(pi d0 N/l) stays below atan(pi) = 72.3 deg.
+    require(l / p_.twist_turns >= d0, "twist_turns", p_.twist_turns,
+            fmt::format("must be <= fiber_length_m/fiber_diameter_m = {}: a twist pitch l/N "
+                        "shorter than the fiber diameter (surface bias angle above 72.3 deg) "
+                        "cannot be carried by that fiber length",
+                        format_value(l / d0)));
+  }
   require(
       material_.min_temperature_K < material_.max_temperature_K, "material.valid_range_degC",
       fmt::format("[{}, {}]", degC(material_.min_temperature_K), degC(material_.max_temperature_K)),
@@ -192,6 +243,10 @@ Tca::Tca(const Parameters& parameters, Material material)
 }
 
 double Tca::chirality() const { return p_.kind == Kind::kExtension ? 1.0 : -1.0; }
+
+double Tca::mean_coil_diameter_m() const {
+  return p_.fiber_diameter_m ? p_.outer_diameter_m - d0_ : 0.5 * p_.outer_diameter_m;
+}
 
 Coefficients Tca::coefficients(double alpha_rad, double t_K) const {
   const MaterialState m = material_.at(t_K);
@@ -232,7 +287,7 @@ TensionState Tca::tension(double elongation_m, double t_K) const {
       (1.0 - (s * t.dp_dalpha + out.tension_N * t.df11_dalpha) * dalpha_ddelta) / t.f11;
   out.dF_dT_N_K = -(s * t.dp_dT + out.tension_N * t.df11_dT) / t.f11;
   out.pitch_angle_rad = std::asin(x);
-  out.below_closed_length = p_.kind == Kind::kExtension && elongation_m < 0.0;
+  out.below_closed_length = has_coil_contact() && elongation_m < closed_elongation_;
   return out;
 }
 
@@ -273,10 +328,11 @@ ElongationState Tca::free_coil_elongation(double tension_N, double t_K) const {
 
 ElongationState Tca::elongation(double tension_N, double t_K) const {
   ElongationState out = free_coil_elongation(tension_N, t_K);
-  // Closed coils (docs/conventions.md "Closed coils"): an extension TCA cannot shorten below L.
-  if (p_.kind == Kind::kExtension && out.elongation_m < 0.0) {
-    out.elongation_m = 0.0;
-    out.pitch_angle_rad = alpha0_;
+  // Closed coils (docs/conventions.md "Closed coils"): a TCA with coil contact cannot shorten
+  // below its closed length (L for the paper's extension TCA, n d0 with a measured d0).
+  if (has_coil_contact() && out.elongation_m < closed_elongation_) {
+    out.elongation_m = closed_elongation_;
+    out.pitch_angle_rad = closed_elongation_ == 0.0 ? alpha0_ : pitch_angle(closed_elongation_);
     out.coils_closed = true;
   }
   return out;
@@ -297,13 +353,14 @@ double Tca::temperature_for_tension(double tension_N, double elongation_m, doubl
 }
 
 std::optional<double> Tca::onset_temperature(double tension_N, double t_lo_K, double t_hi_K) const {
-  if (p_.kind != Kind::kExtension) {
+  if (!has_coil_contact()) {
     throw InputError("kind", to_string(p_.kind),
-                     "has no closed-coil onset temperature (only extension TCAs do)");
+                     "has no closed-coil onset temperature (only extension TCAs and TCAs with a "
+                     "measured fiber_diameter_m do)");
   }
-  // The coils open where the blocked force F_b(T) = F(delta = 0, T) drops below the load:
-  // closed while F_b(T) - F >= 0 (h(0) = -f11 (F - F_b)).
-  const auto q = [&](double t_K) { return tension(0.0, t_K).tension_N - tension_N; };
+  // The coils open where F_c(T) = F(delta_c, T) drops below the load: closed while
+  // F_c(T) - F >= 0 (h(delta_c) = -f11 (F - F_c)).
+  const auto q = [&](double t_K) { return tension(closed_elongation_, t_K).tension_N - tension_N; };
   if (q(t_lo_K) < 0.0) return t_lo_K;
   // One grid cell per kelvin at least: the onset is the first crossing, not any crossing.
   const int intervals = std::max(kScanIntervals, static_cast<int>(std::ceil(t_hi_K - t_lo_K)));
@@ -393,28 +450,35 @@ ContactResidual contact_residual(const Tca& tca, double tension_N, double elonga
                                  const std::vector<Segment>& segments) {
   const double kc = tca.contact_stiffness_N_m();
   const bool contact = tca.has_coil_contact();
+  // delta_c: 0 for the paper's extension TCA (so these lines reduce to the delta >= 0 form).
+  const double dc = tca.closed_elongation_m();
   ContactResidual out{};
   if (segments.size() == 1) {
     const double t_K = segments[0].temperature_K;
-    if (!contact || elongation_m >= 0.0) {
+    if (!contact || elongation_m >= dc) {
       const TensionState ts = tca.tension(elongation_m, t_K);
       out = {tension_N - ts.tension_N, 1.0, -ts.dF_ddelta_N_m, -ts.dF_dT_N_K};
     } else {
-      // No free-coil state below the closed length: F_free continued from delta = 0 with the
-      // slope k_c (temperature independent, so d phi/dT stays -dF_b/dT).
-      const TensionState t0 = tca.tension(0.0, t_K);
-      out = {tension_N - t0.tension_N - kc * elongation_m, 1.0, -kc, -t0.dF_dT_N_K};
+      // No free-coil state below the closed length: F_free continued from delta_c with the
+      // slope k_c (temperature independent, so d phi/dT stays -dF_c/dT).
+      const TensionState t0 = tca.tension(dc, t_K);
+      out = {tension_N - t0.tension_N - kc * (elongation_m - dc), 1.0, -kc, -t0.dF_dT_N_K};
     }
-    // Closed branch -k_c delta where it is the larger: coil contact holds delta at 0.
-    if (contact && -kc * elongation_m > out.phi_N) out = {-kc * elongation_m, 0.0, -kc, 0.0};
+    // Closed branch -k_c (delta - delta_c) where it is the larger: contact holds delta_c.
+    if (contact && -kc * (elongation_m - dc) > out.phi_N) {
+      out = {-kc * (elongation_m - dc), 0.0, -kc, 0.0};
+    }
     return out;
   }
   check_segments(segments);
-  // phi = k_c (sum_k f_k max(0, e_k) - delta), e_k = e(F, T_k); a segment is closed (e_k <= 0)
-  // exactly when F <= F_b(T_k), which needs no root finding.
+  // phi = k_c (sum_k f_k max(delta_c, e_k) - delta), e_k = e(F, T_k); a segment is closed
+  // (e_k <= delta_c) exactly when F <= F_c(T_k), which needs no root finding.
   double sum = 0.0, de_dF = 0.0, de_dT = 0.0;
   for (const Segment& s : segments) {
-    if (contact && tension_N <= tca.blocked_force(s.temperature_K)) continue;
+    if (contact && tension_N <= tca.closed_force(s.temperature_K)) {
+      if (dc != 0.0) sum += s.fraction * dc;  // (skipped at delta_c = 0: same numbers as before)
+      continue;
+    }
     const double e = tca.free_coil_elongation(tension_N, s.temperature_K).elongation_m;
     const TensionState ts = tca.tension(e, s.temperature_K);
     sum += s.fraction * e;
@@ -431,7 +495,7 @@ std::vector<SegmentContact> segment_contacts(const Tca& tca, double tension_N,
   std::vector<SegmentContact> out(segments.size());
   if (!tca.has_coil_contact()) return out;
   for (std::size_t k = 0; k < segments.size(); ++k) {
-    const double c = tca.blocked_force(segments[k].temperature_K) - tension_N;
+    const double c = tca.closed_force(segments[k].temperature_K) - tension_N;
     if (c > 0.0) out[k] = {true, c};
   }
   return out;

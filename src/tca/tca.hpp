@@ -78,7 +78,25 @@ struct Parameters {
   double outer_diameter_m = 0.0;  ///< D
   double twist_turns = 0.0;       ///< N, inserted twist turns
   F12Form f12_form = F12Form::kCastigliano;
+  /// d0 [m], the measured fiber diameter at the material's reference temperature. Absent (the
+  /// default): the paper's closed-coil d0 = 2 D L/l and n = 2 cos(alpha0) l/(pi D). Given: the
+  /// helix of mean diameter D - d0 (docs/conventions.md "Measured fiber diameter").
+  std::optional<double> fiber_diameter_m;
 };
+
+/// Relative disagreement allowed between over-determined geometry values (measured values
+/// quoted to three digits round by up to 0.5 %), and the tolerance of the closed-length check
+/// n d0 <= L for a coil wound closed.
+inline constexpr double kGeometryRelativeTolerance = 0.01;
+
+/// Helix of mean diameter Dm = D - d0 with n coils over the coiled length L: each coil is one
+/// turn of fiber, l^2 = (pi Dm n)^2 + L^2. Returns l [m].
+double fiber_length_from_coil_count(double coiled_length_m, double mean_diameter_m,
+                                    double coil_count);
+
+/// The same helix from its pitch angle: tan(alpha0) = L/(pi Dm n). Returns n.
+double coil_count_from_pitch(double coiled_length_m, double mean_diameter_m,
+                             double pitch_angle_rad);
 
 /// Fiber length from the coiled length and the initial pitch angle: l = L / sin(alpha0).
 double fiber_length_from_pitch(double coiled_length_m, double pitch_angle_rad);
@@ -96,7 +114,7 @@ struct TensionState {
   double dF_ddelta_N_m;    ///< dF/d delta
   double dF_dT_N_K;        ///< dF/dT
   double pitch_angle_rad;  ///< alpha at this elongation, Eq. (5)
-  /// True for an extension TCA pushed below its closed length (delta < 0): the
+  /// True for a TCA with coil contact pushed below its closed length (delta < delta_c): the
   /// free-coil law is then an extrapolation; physically the coils are in contact.
   bool below_closed_length;
 };
@@ -105,14 +123,18 @@ struct TensionState {
 struct ElongationState {
   double elongation_m;     ///< delta
   double pitch_angle_rad;  ///< alpha
-  bool coils_closed;       ///< extension TCA held at delta = 0 by coil contact
+  bool coils_closed;       ///< held at its closed length delta_c by coil contact
 };
 
 /// One TCA: the measurable parameters converted to model constants, and its material.
 class Tca {
  public:
   /// Validates the parameters (throws InputError naming the parameter) and converts:
-  /// alpha0 = asin(L/l), n = 2 cos(alpha0) l/(pi D), phi0 = 2 pi N, d0 = 2 D L/l.
+  /// alpha0 = asin(L/l), phi0 = 2 pi N, and
+  /// - without fiber_diameter_m: n = 2 cos(alpha0) l/(pi D), d0 = 2 D L/l ([Pawlowski2019]);
+  /// - with it: d0 given, n = l cos(alpha0)/(pi (D - d0)), refusing d0 >= D/2 (fiber thicker
+  ///   than the coil), n d0 > L (overlapping coils) and l/N < d0 (a twist pitch shorter than
+  ///   the fiber is thick).
   Tca(const Parameters& parameters, Material material);
 
   const Parameters& parameters() const { return p_; }
@@ -123,6 +145,16 @@ class Tca {
   double initial_fiber_diameter_m() const { return d0_; }     ///< d0
   /// +1 for extension, -1 for contraction: delta = f11 F + s f12 tau.
   double chirality() const;
+  /// True when d0 is the measured fiber_diameter_m, false for the paper's d0 = 2 D L/l.
+  bool has_measured_fiber_diameter() const { return p_.fiber_diameter_m.has_value(); }
+  /// Dm [m], the coil's mean diameter: D - d0 with a measured d0; D/2 for the paper's
+  /// conversions (the diameter their n implies, docs/conventions.md).
+  double mean_coil_diameter_m() const;
+  /// delta_c [m], the elongation at the closed length, where the coils touch: 0 for the
+  /// paper's TCAs (made closed); n d0 - L (<= 0) with a measured d0 (0 when wound closed).
+  /// Meaningful where has_coil_contact(); for the paper's contraction TCA it is -L (a flat
+  /// coil, the end of the domain of Eq. (5)).
+  double closed_elongation_m() const { return closed_elongation_; }
 
   /// f11, f12 and tau at pitch angle alpha and temperature t_K.
   Coefficients coefficients(double alpha_rad, double t_K) const;
@@ -135,10 +167,10 @@ class Tca {
   TensionState tension(double elongation_m, double t_K) const;
 
   /// Eqs. (2)+(5): the elongation under tension F at temperature t_K (bracketed root
-  /// finding in alpha). An extension TCA cannot shorten below its closed length:
-  /// when the free solution has delta < 0 the result is delta = 0, coils_closed.
-  /// A contraction TCA has no such limit: its coils are assumed open (prestretched), so
-  /// delta < 0 (shorter than L) is returned as computed.
+  /// finding in alpha). A TCA with coil contact cannot shorten below its closed length:
+  /// when the free solution has delta < delta_c the result is delta_c, coils_closed.
+  /// The paper's contraction TCA has no such limit: its coils are assumed open (prestretched),
+  /// so delta < 0 (shorter than L) is returned as computed.
   ElongationState elongation(double tension_N, double t_K) const;
 
   /// Eqs. (2)+(5) without coil contact: the free-coil elongation (may be negative for an
@@ -151,21 +183,28 @@ class Tca {
   double temperature_for_tension(double tension_N, double elongation_m, double t_lo_K,
                                  double t_hi_K) const;
 
-  /// Onset temperature of an extension TCA under tension F (F < 0 compresses it): the
-  /// lowest temperature in [t_lo_K, t_hi_K] at which the coils open (delta leaves 0).
+  /// Onset temperature of a TCA with coil contact under tension F (F < 0 compresses it): the
+  /// lowest temperature in [t_lo_K, t_hi_K] at which the coils open (delta leaves delta_c).
   /// Returns nullopt if they stay closed over the whole range.
   std::optional<double> onset_temperature(double tension_N, double t_lo_K, double t_hi_K) const;
 
   /// Free stroke: the elongation at zero tension.
   double free_stroke(double t_K) const { return elongation(0.0, t_K).elongation_m; }
 
-  /// Blocked force: the tension with the TCA held at its closed length (delta = 0).
+  /// Blocked force: the tension with the TCA held at its coiled length L (delta = 0).
   double blocked_force(double t_K) const { return tension(0.0, t_K).tension_N; }
 
-  /// True when coil contact bounds this TCA at its closed length (delta >= 0): extension
-  /// TCAs. A contraction TCA is modelled with open coils at L (docs/conventions.md "Closed
-  /// coils"): it is bounded only by the domain of Eq. (5), 0 < alpha < 90 deg.
-  bool has_coil_contact() const { return p_.kind == Kind::kExtension; }
+  /// F_c(T) [N]: the free-coil tension at the closed length (delta = delta_c); the blocked
+  /// force for the paper's TCAs. Segments are closed while the tension is below it.
+  double closed_force(double t_K) const { return tension(closed_elongation_, t_K).tension_N; }
+
+  /// True when coil contact bounds this TCA at its closed length (delta >= delta_c): extension
+  /// TCAs, and every TCA with a measured fiber diameter. The paper's contraction TCA is
+  /// modelled with open coils at L (docs/conventions.md "Closed coils"): it is bounded only by
+  /// the domain of Eq. (5), 0 < alpha < 90 deg.
+  bool has_coil_contact() const {
+    return p_.kind == Kind::kExtension || p_.fiber_diameter_m.has_value();
+  }
 
   /// k_c [N/m]: |dF/d delta| at delta = 0 and the material's reference temperature (clamped
   /// to its valid range). Scales the closed-coil branch of contact_residual to force units.
@@ -175,6 +214,7 @@ class Tca {
   Parameters p_;
   Material material_;
   double alpha0_ = 0, n_ = 0, phi0_ = 0, d0_ = 0;
+  double closed_elongation_ = 0;
   double contact_stiffness_ = 0;
 };
 
@@ -202,14 +242,17 @@ SeriesTensionState series_tension(const Tca& tca, double elongation_m,
 
 /// The TCA law with coil contact as one equation between the shared tension F of the
 /// string and its total elongation delta (docs/conventions.md "Closed coils"). In each
-/// segment k of an extension TCA: delta_k >= 0, contact force c_k >= 0, c_k delta_k = 0 and
+/// segment k (fraction f_k) of a TCA with coil contact, with its closed elongation
+/// delta_c (0 for the paper's extension TCA, n d0 - L with a measured d0):
+/// delta_k >= f_k delta_c, contact force c_k >= 0, c_k (delta_k - f_k delta_c) = 0 and
 /// F = F_free(delta_k / f_k, T_k) - c_k. Eliminating delta_k and c_k, phi(F, delta) = 0 holds
 /// exactly at those states:
-///   one segment:   phi = max(F - F_free(delta, T), -k_c delta)   (the min complementarity
-///                  function of (k_c delta, c) with c = F_free - F; for delta < 0, where no
-///                  free-coil state exists, F_free is continued as F_b(T) + k_c delta);
-///   k > 1 segments: phi = k_c (sum_k f_k max(0, e(F, T_k)) - delta), e the free-coil
-///                  elongation (Eqs. (2), (5)); the max is absent for a contraction TCA.
+///   one segment:   phi = max(F - F_free(delta, T), -k_c (delta - delta_c))   (the min
+///                  complementarity function of (k_c (delta - delta_c), c) with c = F_free - F;
+///                  for delta < delta_c, where no free-coil state exists, F_free is continued
+///                  as F_c(T) + k_c (delta - delta_c));
+///   k > 1 segments: phi = k_c (sum_k f_k max(delta_c, e(F, T_k)) - delta), e the free-coil
+///                  elongation (Eqs. (2), (5)); the max is absent without coil contact.
 /// phi is piecewise smooth (semismooth), so Newton with these derivatives converges
 /// quadratically; in force units [N]. One open segment gives phi = F - F_free(delta, T), the
 /// free-coil row of both rod solvers.
@@ -227,12 +270,12 @@ ContactResidual contact_residual(const Tca& tca, double tension_N, double elonga
 
 /// Coil contact of one segment in a solved state.
 struct SegmentContact {
-  bool coils_closed = false;     ///< the segment sits at its closed length, F < F_b(T_k)
-  double contact_force_N = 0.0;  ///< c_k = F_b(T_k) - F >= 0 when closed, else 0
+  bool coils_closed = false;     ///< the segment sits at its closed length, F < F_c(T_k)
+  double contact_force_N = 0.0;  ///< c_k = F_c(T_k) - F >= 0 when closed, else 0
 };
 
-/// The contact state of each segment at the shared tension F (extension TCAs; a
-/// contraction TCA's segments are always open). F_b is the blocked force.
+/// The contact state of each segment at the shared tension F (TCAs with coil contact; the
+/// paper's contraction TCA's segments are always open). F_c is Tca::closed_force.
 std::vector<SegmentContact> segment_contacts(const Tca& tca, double tension_N,
                                              const std::vector<Segment>& segments);
 

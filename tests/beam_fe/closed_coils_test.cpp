@@ -53,6 +53,30 @@ TEST(BeamFeClosedCoils, TcaHeldClosedByALoadAboveItsBlockedForceIsARigidStrutOnA
   }
 }
 
+TEST(BeamFeClosedCoils, OpenCoilTcaHeldAtItsClosedLengthNd0IsARigidStrut) {
+  // A measured fiber: the coils touch at n d0 < L, delta_c = n d0 - L; the strut holds there.
+  const double t_K = units::degC_to_K(25.0);
+  const rod::RodModel m = testing::open_coil_strut_rod(0.5, t_K);
+  const testing::StrutClosedForm cf = testing::strut_closed_form(m);
+  const tca::Tca& tca = *m.actuators[0].drive.tca;
+  const double dc = tca.closed_elongation_m(), fc = tca.closed_force(t_K);
+  ASSERT_LT(dc, 0.0);
+  ASSERT_LT(cf.strut_tension_N, fc);
+  for (const int order : {1, 2}) {
+    SCOPED_TRACE(::testing::Message() << "order " << order);
+    const Options opt = options(4, order);
+    const Solved s = run(m, opt);
+    ASSERT_TRUE(s.summary.converged()) << s.summary.message;
+    const rod::Result r = make_result(m, opt, s.state, s.summary);
+    EXPECT_NEAR(r.actuators[0].tension_N, cf.strut_tension_N,
+                kExact * std::abs(cf.strut_tension_N));
+    EXPECT_NEAR(r.actuators[0].elongation_m, dc, kExact * m.length_m);
+    EXPECT_TRUE(r.actuators[0].coils_closed);
+    EXPECT_NEAR(r.actuators[0].contact_force_N, fc - cf.strut_tension_N,
+                kExact * std::abs(cf.strut_tension_N));
+  }
+}
+
 TEST(BeamFeClosedCoils, HeatedAboveTheOnsetTheCoilsOpenAndTheTcaPushes) {
   const double t_K = units::degC_to_K(25.0);
   rod::RodModel m = testing::strut_rod(0.05, t_K);

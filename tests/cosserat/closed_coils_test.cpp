@@ -73,6 +73,34 @@ TEST(ClosedCoils, TcaHeldClosedByALoadAboveItsBlockedForceIsARigidStrut) {
               cf.strut_tension_N, r.actuators[0].elongation_m, s.iterations);
 }
 
+TEST(ClosedCoils, OpenCoilTcaHeldAtItsClosedLengthNd0IsARigidStrut) {
+  // A measured fiber: the coils touch at n d0 < L, delta_c = n d0 - L; the strut holds there.
+  const double t_K = units::degC_to_K(25.0);
+  const rod::RodModel m = testing::open_coil_strut_rod(0.5, t_K);
+  const testing::StrutClosedForm cf = testing::strut_closed_form(m);
+  const tca::Tca& tca = *m.actuators[0].drive.tca;
+  const double dc = tca.closed_elongation_m(), fc = tca.closed_force(t_K);
+  ASSERT_LT(dc, 0.0);
+  ASSERT_LT(cf.strut_tension_N, fc);  // the load exceeds what the open coil can hold off
+  ShootingSolver solver(m, strut_options());
+  const Actuation act = Actuation::from_model(m);
+  Solution sol;
+  sol.valid = true;
+  sol.unknowns.resize(7);
+  sol.unknowns << 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5 * cf.strut_tension_N;
+  const Summary s = solver.solve(act, sol);
+  ASSERT_TRUE(s.converged()) << s.message;
+  const rod::Result r = solver.make_result(act, sol, s);
+  const double L = m.length_m;
+  EXPECT_LE((r.tip_position_W_m - cf.tip_W_m).norm(), kClosedFormTip * L);
+  EXPECT_NEAR(r.actuators[0].tension_N, cf.strut_tension_N,
+              kClosedFormTension * std::abs(cf.strut_tension_N));
+  EXPECT_NEAR(r.actuators[0].elongation_m, dc, kClosedFormTip * L);
+  EXPECT_TRUE(r.actuators[0].coils_closed);
+  EXPECT_NEAR(r.actuators[0].contact_force_N, fc - cf.strut_tension_N,
+              kClosedFormTension * std::abs(cf.strut_tension_N));
+}
+
 TEST(ClosedCoils, SweepOpensTheCoilsAtThePredictedOnsetWithAContinuousKink) {
   const rod::RodModel m = strut_rod_opening_at(kOnset_degC, units::degC_to_K(40.0));
   const testing::StrutClosedForm cf = testing::strut_closed_form(m);

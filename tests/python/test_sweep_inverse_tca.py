@@ -127,3 +127,40 @@ def test_tca_curve_names_its_arguments_in_errors():
     with pytest.raises(tcasim.InputError) as e:
         tcasim.tca_curve(source, [30], load_g=5, tca="three-thread", material="no-such-material")
     assert e.value.key == "material"
+
+
+def test_tca_curve_with_a_measured_fiber_diameter_matches_the_cli(run_cli):
+    # validation/scenarios/liuyang-monocoil-tcas.json: the open-coil monocoil with its measured
+    # fiber (docs/conventions.md "Measured fiber diameter") and the same TCA with the paper's d0.
+    source = SCENARIO_DIR / "liuyang-monocoil-tcas.json"
+    cli = run_cli("tca", source, "--tca", "measured", "--tension-N", "1", "--temperatures-degC",
+                  "25:120:95")
+    assert cli.returncode == 0, cli.stderr
+    expected = read_csv(cli.stdout)
+    got = tcasim.tca_curve(source, [25.0, 120.0], tension_N=1.0, tca="measured")
+    for name in ("elongation_m", "tension_N", "pitch_angle_deg"):
+        assert [float(v) for v in expected[name]] == list(got[name]), name
+    # The paper's d0 = 2 D L / l = 1.22 mm makes the 0.74 mm fiber's coil far stiffer.
+    paper = tcasim.tca_curve(source, [25.0], tension_N=1.0, tca="paper-d0")
+    assert got["elongation_m"][0] > 5.0 * paper["elongation_m"][0]
+
+
+def test_scenario_with_a_measured_fiber_diameter_solves_and_bad_geometry_is_named():
+    d = json.loads((SCENARIO_DIR / "circular-manipulator.json").read_text())
+    t = d["tcas"]["manipulator-tca"]
+    t["fiber_diameter_m"] = 0.0004  # open coil: 36.5 coils of pitch 1.1 mm
+    sc = tcasim.load_scenario(d)
+    assert sc.to_dict()["tcas"]["manipulator-tca"]["fiber_diameter_m"] == 0.0004
+    r = tcasim.solve(sc)
+    assert r.converged
+    # Over-determined and disagreeing: 20 coils is not the 15 deg helix of mean diameter 1.3 mm.
+    t["coil_count"] = 20
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.load_scenario(d)
+    assert e.value.key == "tcas.manipulator-tca.coil_count"
+    assert "disagrees with pitch_angle_deg" in e.value.rule
+    del t["coil_count"]
+    t["fiber_diameter_m"] = 0.001  # thicker than half the 1.7 mm coil
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.load_scenario(d)
+    assert e.value.key == "tcas.manipulator-tca.fiber_diameter_m"

@@ -759,5 +759,99 @@ TEST(WithTcaMaterial, RebuildsEveryTcaOnTheMaterialAndRepointsTheActuators) {
             base.tcas.begin()->second->parameters().f12_form);
 }
 
+// ---------------------------------------------------------------------------------------
+// TCAs with a measured fiber diameter (docs/scenario-format.md "TCAs")
+
+/// The full scenario with its gripper TCA given as the measured open-coil monocoil:
+/// d0 = 0.74 mm, D = 2.372 mm (helix mean diameter 1.632 mm), L = 25 mm, 732 coils per metre.
+json measured_gripper() {
+  json doc = full();
+  json& t = doc["tcas"]["gripper-tca"];
+  t.erase("fiber_length_m");
+  t["coiled_length_m"] = 0.025;
+  t["outer_diameter_m"] = 2.372e-3;
+  t["fiber_diameter_m"] = 0.74e-3;
+  t["coils_per_m"] = 732;
+  t["twist_turns"] = 47.3;
+  return doc;
+}
+
+/// Geometry computed in double precision from the same inputs two ways.
+constexpr double kGeometryRoundOff = 1e-12;
+
+TEST(ParseScenario, MeasuredFiberDiameterWithCoilsPerMetreGivesTheHelix) {
+  const RodModel m = parse_scenario(measured_gripper());
+  const tca::Tca& t = *m.tcas.at("gripper-tca");
+  const double Dm = 2.372e-3 - 0.74e-3, n = 732 * 0.025;
+  EXPECT_EQ(t.initial_fiber_diameter_m(), 0.74e-3);
+  EXPECT_NEAR(t.coil_count(), n, kGeometryRoundOff * n);
+  EXPECT_NEAR(t.parameters().fiber_length_m, std::hypot(units::kPi * Dm * n, 0.025),
+              kGeometryRoundOff);
+  EXPECT_NEAR(t.closed_elongation_m(), n * 0.74e-3 - 0.025, kGeometryRoundOff);
+  // The other ways of giving the same helix: coil_count; fiber length or pitch angle; both
+  // (over-determined, agreeing within the stated tolerance).
+  json doc = measured_gripper();
+  doc["tcas"]["gripper-tca"].erase("coils_per_m");
+  doc["tcas"]["gripper-tca"]["coil_count"] = n;
+  EXPECT_NEAR(parse_scenario(doc).tcas.at("gripper-tca")->coil_count(), n, kGeometryRoundOff * n);
+  doc["tcas"]["gripper-tca"]["coils_per_m"] = 732;
+  doc["tcas"]["gripper-tca"]["fiber_length_m"] = 0.0971;  // three digits of l = 97.099 mm
+  EXPECT_EQ(parse_scenario(doc).tcas.at("gripper-tca")->parameters().fiber_length_m, 0.0971);
+  doc = measured_gripper();
+  json& t2 = doc["tcas"]["gripper-tca"];
+  t2.erase("coils_per_m");
+  t2["pitch_angle_deg"] = units::rad_to_deg(std::atan(0.025 / (units::kPi * Dm * n)));
+  EXPECT_NEAR(parse_scenario(doc).tcas.at("gripper-tca")->coil_count(), n, 1e-9 * n);
+}
+
+TEST(RejectScenario, OverDeterminedTcaGeometryThatDisagreesNamesBothKeys) {
+  json doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["fiber_length_m"] = 0.09;  // 16.9 coils, not 18.3
+  expect_rejected(doc, "tcas.gripper-tca.coils_per_m", "732", "disagrees with fiber_length_m");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["coil_count"] = 20;
+  expect_rejected(doc, "tcas.gripper-tca.coils_per_m", "732", "disagrees with coil_count = 20");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["pitch_angle_deg"] = 20;
+  expect_rejected(doc, "tcas.gripper-tca.coils_per_m", "732", "disagrees with pitch_angle_deg");
+  // A fiber shorter than the coil is refused as such, not as a disagreement.
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["fiber_length_m"] = 0.02;
+  expect_rejected(doc, "tcas.gripper-tca.coiled_length_m", "0.025",
+                  "must be < fiber_length_m = 0.02");
+}
+
+TEST(RejectScenario, CoilCountWithoutMeasuredFiberDiameter) {
+  json doc = full();
+  doc["tcas"]["gripper-tca"]["coil_count"] = 150;
+  expect_rejected(doc, "tcas.gripper-tca.coil_count", "150", "requires fiber_diameter_m");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"].erase("coils_per_m");
+  expect_rejected(doc, "tcas.gripper-tca.fiber_length_m", "(missing)",
+                  "pitch_angle_deg, coil_count or coils_per_m");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["fiber_diameter_m"] = "0.74 mm";
+  expect_rejected(doc, "tcas.gripper-tca.fiber_diameter_m", "\"0.74 mm\"", "must be a number");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["coils_per_m"] = 0;
+  expect_rejected(doc, "tcas.gripper-tca.coils_per_m", "0", "must be positive");
+}
+
+TEST(RejectScenario, ImpossibleMeasuredCoilGeometry) {
+  json doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["fiber_diameter_m"] = 1.2e-3;
+  expect_rejected(doc, "tcas.gripper-tca.fiber_diameter_m", "0.0012", "no coil");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["coils_per_m"] = 1500;  // pitch 0.67 mm < 0.74 mm
+  expect_rejected(doc, "tcas.gripper-tca.fiber_diameter_m", "0.00074", "coils would overlap");
+  doc = measured_gripper();
+  doc["tcas"]["gripper-tca"]["twist_turns"] = 200;  // twist pitch 0.49 mm < 0.74 mm
+  expect_rejected(doc, "tcas.gripper-tca.twist_turns", "200", "twist pitch");
+  // Pre-elongated below its closed length n d0 = 13.5 mm (delta_c = -11.5 mm).
+  doc = measured_gripper();
+  doc["actuators"][1]["pre_elongation_m"] = -0.012;
+  expect_rejected(doc, "actuators[1].pre_elongation_m", "-0.012", "cannot be shorter than closed");
+}
+
 }  // namespace
 }  // namespace tcasim::rod

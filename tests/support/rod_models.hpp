@@ -182,6 +182,36 @@ inline rod::RodModel strut_rod(double load_N, double t_K) {
   return m;
 }
 
+/// An open-coil contraction TCA with a measured fiber (docs/conventions.md "Measured fiber
+/// diameter"): L = 40 mm, D = 1.7 mm, d0 = 0.3 mm, 20 coils (pitch 2 mm), closed length
+/// n d0 = 6 mm, N = 20 turns, silver-nylon-sun2022.
+inline std::shared_ptr<const tca::Tca> open_coil_tca() {
+  tca::Parameters p;
+  p.kind = tca::Kind::kContraction;
+  p.coiled_length_m = 0.040;
+  p.outer_diameter_m = 0.0017;
+  p.fiber_diameter_m = 0.0003;
+  p.fiber_length_m = tca::fiber_length_from_coil_count(0.040, 0.0017 - 0.0003, 20.0);
+  p.twist_turns = 20.0;
+  p.f12_form = tca::F12Form::kCastigliano;
+  return std::make_shared<const tca::Tca>(p,
+                                          rod::load_material("silver-nylon-sun2022", "material"));
+}
+
+/// strut_rod with the open-coil TCA of open_coil_tca pre-elongated to its closed length
+/// (rest length L - delta_c): in the reference shape its coils touch, and the tendon load P
+/// holds them so; the strut closed form below holds with delta = delta_c.
+inline rod::RodModel open_coil_strut_rod(double load_N, double t_K) {
+  rod::RodModel m = square_rod(0.040, 0.010, 37.8e3, 0.5, 0.0);
+  m.name = "open-coil-strut-rod";
+  const auto tca = open_coil_tca();
+  const double dc = tca->closed_elongation_m();
+  add_tca_string(m, "tca", tca, 0.003, 0.0, t_K);
+  m.actuators[0].rest_length_m = m.length_m - dc;
+  add_tension_string(m, "load", 0.0, 0.0, load_N);
+  return m;
+}
+
 /// The rigid-strut state of strut_rod: strut tension T_s, axial strain nu3, curvature
 /// kappa = omega_y and the tip position (p_x, 0, p_z).
 struct StrutClosedForm {

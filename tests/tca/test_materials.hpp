@@ -62,6 +62,34 @@ inline Parameters four_thread(Kind kind = Kind::kExtension, F12Form form = F12Fo
   return p;
 }
 
+/// Nylon 6,6 of the open-coil monocoil below: E = 1.925 GPa, G = E/3, rho = 8e-5 1/K
+/// (data/tca/liuyang-monocoil/README.md).
+inline Material nylon_monocoil() {
+  Material m;
+  m.name = "nylon-monocoil-test";
+  m.reference_temperature_K = units::degC_to_K(25.0);
+  m.youngs_modulus_Pa.coefficients = {1.925e9};
+  m.shear_modulus_Pa.coefficients = {1.925e9 / 3.0};
+  m.diameter.type = DiameterLaw::Type::kLinearExpansion;
+  m.diameter.linear_expansion_1_K = 8e-5;
+  m.min_temperature_K = units::degC_to_K(0.0);
+  m.max_temperature_K = units::degC_to_K(180.0);
+  return m;
+}
+/// An open-coil contraction monocoil with a measured fiber: d0 = 0.74 mm, helix mean
+/// diameter 1.632 mm, L = 25 mm, 18.3 coils (732 per metre), N = 47.3 twist turns.
+inline Parameters open_monocoil(Kind kind = Kind::kContraction) {
+  Parameters p;
+  p.kind = kind;
+  p.coiled_length_m = 0.025;
+  p.fiber_diameter_m = 0.74e-3;
+  p.outer_diameter_m = 1.632e-3 + 0.74e-3;
+  p.fiber_length_m = fiber_length_from_coil_count(0.025, 1.632e-3, 732.0 * 0.025);
+  p.twist_turns = 47.3;
+  p.f12_form = F12Form::kCastigliano;
+  return p;
+}
+
 inline double K(double t_degC) { return units::degC_to_K(t_degC); }
 
 }  // namespace tcasim::tca::testing
