@@ -83,7 +83,7 @@ TEST(ClosedCoils, OpenCoilTcaHeldAtItsClosedLengthNd0IsARigidStrut) {
   ASSERT_LT(dc, 0.0);
   ASSERT_LT(cf.strut_tension_N, fc);  // the load exceeds what the open coil can hold off
   ShootingSolver solver(m, strut_options());
-  const Actuation act = Actuation::from_model(m);
+  const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
   sol.valid = true;
   sol.unknowns.resize(7);
