@@ -144,9 +144,8 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   // A body that varies along s: the properties at each quadrature point (inside the element,
   // so never at a breakpoint, where the mesh has a node).
   const bool uniform = model.uniform_body();
-  Vector3d K_nu = model.shear_extension_stiffness();
-  Vector3d K_omega = model.bending_torsion_stiffness();
-  Vector3d omega_ref = model.reference_curvature_B_1_m;
+  rod::SectionStiffness stiffness = model.stiffness_at(0.0);
+  Vector3d omega_ref = model.reference_curvature_at(0.0);
   const std::size_t n_act = model.actuators.size();
   // A string anchored inside the body runs along the elements of its span only (the mesh
   // has nodes at the anchors): its potential c T l over the span.
@@ -192,10 +191,11 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     const double wj = weight[g] * 0.5 * h_m_;
     const double s_m = state.s_m[first] + 0.5 * (xi[g] + 1.0) * h_m_;
     if (!uniform) {
-      K_nu = model.shear_extension_stiffness(s_m);
-      K_omega = model.bending_torsion_stiffness(s_m);
+      stiffness = model.stiffness_at(s_m);
       omega_ref = model.reference_curvature_at(s_m);
     }
+    const Vector3d& K_nu = stiffness.shear_extension;
+    const Vector3d& K_omega = stiffness.bending_torsion;
     double dN[3];
     for (int a = 0; a < n; ++a) dN[a] = dN_dxi[a] * 2.0 / h_m_;
     Vector3d yp, ps, pp;

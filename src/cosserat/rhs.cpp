@@ -288,8 +288,7 @@ struct SectionWrench {
 /// `side`: the side of the knot s the section lies on (the string tangents of a kinked
 /// spline routing differ: docs/conventions.md "Spline routings").
 void section_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece,
-                    const RodRhs::Local& k, const Vec3& e, const Vec3& omega,
-                    SectionWrench& out) {
+                    const RodRhs::Local& k, const Vec3& e, const Vec3& omega, SectionWrench& out) {
   out.W.head<3>() = k.Kn.cwiseProduct(e);
   out.W.tail<3>() = k.Kw.cwiseProduct(omega - k.ws);
   out.M.setZero();
@@ -384,7 +383,8 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
     }
   }
   if (uniform) {
-    f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+    const double rho = model.material.density_profile.value(0.0);
+    f_ext_W = lambda * rho * model.section.properties_at(0.0).area_m2 * act.gravity_W_m_s2;
   } else {
     f_ext_W = lambda * rho_A_ref * act.gravity_W_m_s2;  // times weight_factor(s) in the RHS
   }

@@ -23,7 +23,7 @@ ConstantStrains closed_form_strains(const RodModel& model, const std::vector<dou
   // omega*), the force sum c T e_z balances K_nu (nu - nu*).
   ConstantStrains s;
   s.e = Eigen::Vector3d(0.0, 0.0, -sum_T / K_nu.z());
-  s.omega = model.reference_curvature_B_1_m +
+  s.omega = model.reference_curvature_at(0.0) +
             Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
   return s;
 }

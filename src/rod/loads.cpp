@@ -136,8 +136,7 @@ double characteristic_force_N(const RodModel& model, const Loads& loads) {
   const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
   const double EI = std::min(K_omega.x(), K_omega.y());
   double load = std::max(tip_force_with_weight_W_N(model, a).norm(), a.tip_moment_W_Nm.norm() / L);
-  load = std::max(
-      load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
+  load = std::max(load, model.mass_per_length_kg_m(0.0) * a.gravity_W_m_s2.norm() * L);
   for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
     const Actuator& act = model.actuators[i];
     if (act.drive.type == Drive::Type::kTension)
