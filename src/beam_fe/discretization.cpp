@@ -40,6 +40,8 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");
   h_m_ = model.length_m / elements_;
+  base_stiffness_ = model.stiffness_at(0.0);
+  base_omega_star_ = model.reference_curvature_at(0.0);
   std::vector<double> knots = model.interior_knots();
   for (const double s : options.extra_knots_m) {
     require(s > 0.0 && s < model.length_m, "extra_knots_m", s,

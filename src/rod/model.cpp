@@ -253,7 +253,9 @@ void RodModel::property_slopes(double s, Side side, Eigen::Vector3d& dK_se, Eige
   }
   const SectionProperties p = section.properties_at(s, side);
   const SectionProperties dp = section.derivatives_at(s, side);
-  const double c = 1.0 / (2.0 * (1.0 + material.poisson_ratio));  // G = c E
+  // d/ds of section_stiffness(p, E, G) with G = c E (BodyMaterial::shear_modulus is linear in E):
+  // the product rule on each diagonal entry.
+  const double c = 1.0 / (2.0 * (1.0 + material.poisson_ratio));
   const double E = material.youngs_modulus_profile.value(s, side);
   const double dE = material.youngs_modulus_profile.slope(s, side);
   const double dGA = c * (dE * p.area_m2 + E * dp.area_m2);

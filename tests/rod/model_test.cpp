@@ -22,15 +22,16 @@ constexpr double kFdRelative = 1e-8;
 Section rectangle(double w, double h) {
   Section s;
   s.shape = Section::Shape::kRectangle;
-  s.width_m = w;
-  s.height_m = h;
+  s.width_profile = Profile(w);
+  s.height_profile = Profile(h);
   return s;
 }
 
 TEST(Section, CircleHalfExtentIsRadiusInEveryDirection) {
   Section s;
   s.shape = Section::Shape::kCircle;
-  s.width_m = 0.008;
+  s.width_profile = Profile(0.008);
+  s.height_profile = Profile(0.008);
   for (double a = 0.0; a < 2.0 * units::kPi; a += 0.3) {
     EXPECT_NEAR(s.half_extent_m(std::cos(a), std::sin(a)), 0.004, kRoundOff);
   }
