@@ -12,8 +12,9 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
   n_act = static_cast<int>(model.actuators.size());
   dim = delta_offset + n_act;
   L = model.length_m;
-  K_nu = model.shear_extension_stiffness();
-  K_omega = model.bending_torsion_stiffness();
+  const rod::SectionStiffness K_base = model.stiffness_at(0.0);
+  K_nu = K_base.shear_extension;
+  K_omega = K_base.bending_torsion;
   K_nu_inv = K_nu.cwiseInverse();
   K_omega_inv = K_omega.cwiseInverse();
   nu_star = Vec3::UnitZ();
@@ -43,7 +44,9 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
   K_nu_tip = K_nu;
   K_omega_tip = K_omega;
   omega_star_tip = omega_star;
-  rho_A_ref = model.mass_per_length_kg_m(0.0);
+  density_base = model.material.density_profile.value(0.0);
+  area_base = model.section.properties_at(0.0).area_m2;
+  rho_A_ref = density_base * area_base;
   weight_length = L;
   if (!uniform) {
     K_nu_tip = model.shear_extension_stiffness(L, rod::Side::kLeft);

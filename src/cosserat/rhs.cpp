@@ -384,8 +384,7 @@ void RodRhs::set_parameters(const Actuation& act, double lambda, const Eigen::Ve
     }
   }
   if (uniform) {
-    const double rho = model.material.density_profile.value(0.0);
-    f_ext_W = lambda * rho * model.section.properties_at(0.0).area_m2 * act.gravity_W_m_s2;
+    f_ext_W = lambda * density_base * area_base * act.gravity_W_m_s2;
   } else {
     f_ext_W = lambda * rho_A_ref * act.gravity_W_m_s2;  // times weight_factor(s) in the RHS
   }
