@@ -263,6 +263,9 @@ class Discretization {
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position
   Eigen::Vector3d tip_goal_W_m_ = Eigen::Vector3d::Zero();       // tip_constraint.position
   double constraint_stiffness_N_m_ = 0.0;  // k_c = max(EA, GA)/L: constraint rows in N
+  // K_nu, K_omega and omega* at s = 0: a uniform body's at every s, evaluated once.
+  rod::SectionStiffness base_stiffness_;
+  Eigen::Vector3d base_omega_star_ = Eigen::Vector3d::Zero();
 
   /// Builds the tangent's pattern and the position of every element entry in its values.
   void assemble_pattern(Eigen::SparseMatrix<double>& K) const;

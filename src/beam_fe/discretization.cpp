@@ -79,6 +79,8 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");
   h_m_ = model.length_m / elements_;
+  base_stiffness_ = model.stiffness_at(0.0);
+  base_omega_star_ = model.reference_curvature_at(0.0);
   std::vector<double> knots = model.interior_knots();
   for (const double s : options.extra_knots_m) {
     require(s > 0.0 && s < model.length_m, "extra_knots_m", s,
@@ -149,7 +151,7 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   // Tip constraint: held world directions (all three when pinned, the normal for a contact),
   // target ramped from the stress-free tip (exact arc of omega*, as reference_state).
   if (uniform) {
-    const Vector3d phi_L = model.length_m * model.reference_curvature_B_1_m;
+    const Vector3d phi_L = model.length_m * model.reference_curvature_at(0.0);
     tip_reference_W_m_ =
         model.base_position_W_m +
         model.R_WB0 * (model.length_m * so3::left_jacobian(phi_L) * Vector3d::UnitZ());
@@ -212,7 +214,7 @@ State Discretization::reference_state() const {
   }
   for (int k = 0; k < nodes; ++k) {
     const double s = model.length_m * k / (nodes - 1);
-    const Vector3d phi = s * model.reference_curvature_B_1_m;
+    const Vector3d phi = s * model.reference_curvature_at(0.0);
     st.s_m.push_back(s);
     // Exact arc of constant curvature: R = R0 exp(s omega*), p = p0 + R0 s Jl(s omega*) e3.
     st.p_W_m.push_back(model.base_position_W_m +

@@ -171,8 +171,7 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
       const double wj = w[g] * 0.5 * he;
       const double rhoA = m.mass_per_length_kg_m(s);
       const rod::SectionProperties sp = m.section.properties_at(s);
-      const double rho = m.uniform_body() ? m.material.density_kg_m3
-                                          : m.material.density_profile.value(s, rod::Side::kRight);
+      const double rho = m.material.density_profile.value(s, rod::Side::kRight);
       // [Till2019] / cosserat dynamics: rho J = diag(rho I_x, rho I_y, rho (I_x + I_y)).
       const Vector3d rhoJ(rho * sp.I_x_m4, rho * sp.I_y_m4, rho * (sp.I_x_m4 + sp.I_y_m4));
       for (int i = 0; i < n; ++i) {
@@ -187,7 +186,7 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
   }
   const double eta_max = o.viscosity_Pa_s ? *o.viscosity_Pa_s
                          : eta_varies      ? eta_profile.max_value()
-                                           : m.material.viscosity_Pa_s;
+                                           : eta_profile.value(0.0);
   if (eta_max > 0.0) {
     kv = std::make_unique<damping::StrainRateHistory>(*disc_static, m, o.viscosity_Pa_s, ap, h);
     // The viscous stresses c_e B eps(n+1) - c_e B eps(n) are formed from the strains as the

@@ -68,8 +68,7 @@ void work_jet(const Vector9d& g, const Vector6d& sigma_h, const Vector6d& C, Vec
 double viscosity_at(const rod::RodModel& model, double s_m,
                     const std::optional<double>& override_Pa_s) {
   if (override_Pa_s) return *override_Pa_s;
-  const rod::Profile& p = model.material.viscosity_profile;
-  return p.is_constant() ? model.material.viscosity_Pa_s : p.value(s_m);
+  return model.material.viscosity_profile.value(s_m);
 }
 
 void add_viscous_forces(const Discretization& disc, const State& state,
@@ -152,22 +151,12 @@ StrainRateHistory::StrainRateHistory(const Discretization& disc, const rod::RodM
     : disc_(disc), ap_(ap), h_(dt_s), c_e_(ap.gamma / (ap.beta * dt_s)) {
   // docs/conventions.md "Dynamics": B_se = diag(eta_s A, eta_s A, eta A),
   // B_bt = diag(eta I_x, eta I_y, eta_s J), eta_s = eta / (2 (1 + poisson)), at each point's s.
-  const bool uniform = model.uniform_body();
   for (const PointStrain& p : disc.strains(disc.reference_state())) {
     const double eta = viscosity_at(model, p.s_m, eta_override);
-    const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
-    rod::SectionProperties sp;
-    if (uniform) {
-      sp.area_m2 = model.section.area_m2;
-      sp.I_x_m4 = model.section.I_x_m4;
-      sp.I_y_m4 = model.section.I_y_m4;
-      sp.J_m4 = model.section.J_m4;
-    } else {
-      sp = model.section.properties_at(p.s_m);
-    }
+    const rod::SectionStiffness Bs = rod::section_stiffness(model.section.properties_at(p.s_m), eta,
+                                                            model.material.shear_modulus(eta));
     Vector6d B;
-    B << eta_s * sp.area_m2, eta_s * sp.area_m2, eta * sp.area_m2, eta * sp.I_x_m4,
-        eta * sp.I_y_m4, eta_s * sp.J_m4;
+    B << Bs.shear_extension, Bs.bending_torsion;
     B_.push_back(B);
     cB_.push_back(c_e_ * B);
   }

@@ -114,7 +114,8 @@ void interpolate(const double* N, const double* dN, const std::array<Vector3d, n
 }
 
 template <int kOrder>
-void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
+void element_kernel(const rod::RodModel& model, const rod::SectionStiffness& base_stiffness,
+                    const Vector3d& base_omega_star, const std::vector<double>& xi,
                     const std::vector<double>& weight, double h_m_, const State& state, int e,
                     const std::vector<double>& tensions_N, bool with_tangent,
                     ElementEvaluation& out) {
@@ -130,9 +131,9 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
   // A body that varies along s: the properties at each quadrature point (inside the element,
   // so never at a breakpoint, where the mesh has a node).
   const bool uniform = model.uniform_body();
-  Vector3d K_nu = model.shear_extension_stiffness();
-  Vector3d K_omega = model.bending_torsion_stiffness();
-  Vector3d omega_ref = model.reference_curvature_B_1_m;
+  Vector3d K_nu = base_stiffness.shear_extension;
+  Vector3d K_omega = base_stiffness.bending_torsion;
+  Vector3d omega_ref = base_omega_star;
   const std::size_t n_act = model.actuators.size();
   // A string anchored inside the body runs along the elements of its span only (the mesh
   // has nodes at the anchors): its potential c T l over the span.
@@ -167,8 +168,9 @@ void element_kernel(const rod::RodModel& model, const std::vector<double>& xi,
     const double wj = weight[g] * 0.5 * h_m_;
     const double s_m = state.s_m[first] + 0.5 * (xi[g] + 1.0) * h_m_;
     if (!uniform) {
-      K_nu = model.shear_extension_stiffness(s_m);
-      K_omega = model.bending_torsion_stiffness(s_m);
+      const rod::SectionStiffness k = model.stiffness_at(s_m);
+      K_nu = k.shear_extension;
+      K_omega = k.bending_torsion;
       omega_ref = model.reference_curvature_at(s_m);
     }
     double dN[3];
@@ -383,11 +385,13 @@ void Discretization::evaluate_element(const State& state, int e,
                                       const std::vector<double>& tensions_N, bool with_tangent,
                                       ElementEvaluation& out) const {
   if (order_ == 1) {
-    element_kernel<1>(*model_, quad_.xi, quad_.weight, element_h_m_[static_cast<std::size_t>(e)],
-                      state, e, tensions_N, with_tangent, out);
+    element_kernel<1>(*model_, base_stiffness_, base_omega_star_, quad_.xi, quad_.weight,
+                      element_h_m_[static_cast<std::size_t>(e)], state, e, tensions_N, with_tangent,
+                      out);
   } else {
-    element_kernel<2>(*model_, quad_.xi, quad_.weight, element_h_m_[static_cast<std::size_t>(e)],
-                      state, e, tensions_N, with_tangent, out);
+    element_kernel<2>(*model_, base_stiffness_, base_omega_star_, quad_.xi, quad_.weight,
+                      element_h_m_[static_cast<std::size_t>(e)], state, e, tensions_N, with_tangent,
+                      out);
   }
 }
 

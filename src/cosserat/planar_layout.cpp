@@ -146,7 +146,8 @@ std::unique_ptr<Layout> make_planar_layout(const rod::RodModel& m, const Options
   // The planar right-hand sides have constant properties: a body that varies along s is
   // solved in 3-D (its pieces and jumps are RodRhs's).
   if (!m.uniform_body() || m.has_inner_anchors()) return nullptr;
-  if (m.reference_curvature_B_1_m.x() != 0.0 || m.reference_curvature_B_1_m.z() != 0.0) {
+  const Eigen::Vector3d omega_star = m.reference_curvature_at(0.0);
+  if (omega_star.x() != 0.0 || omega_star.z() != 0.0) {
     return nullptr;
   }
   int n_tca = 0;

@@ -12,12 +12,13 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
   n_act = static_cast<int>(model.actuators.size());
   dim = delta_offset + n_act;
   L = model.length_m;
-  K_nu = model.shear_extension_stiffness();
-  K_omega = model.bending_torsion_stiffness();
+  const rod::SectionStiffness K_base = model.stiffness_at(0.0);
+  K_nu = K_base.shear_extension;
+  K_omega = K_base.bending_torsion;
   K_nu_inv = K_nu.cwiseInverse();
   K_omega_inv = K_omega.cwiseInverse();
   nu_star = Vec3::UnitZ();
-  omega_star = model.reference_curvature_B_1_m;
+  omega_star = model.reference_curvature_at(0.0);
   unknown_of.assign(n_act, -1);
   for (int i = 0; i < n_act; ++i) {
     const rod::Actuator& a = model.actuators[i];
@@ -43,7 +44,9 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
   K_nu_tip = K_nu;
   K_omega_tip = K_omega;
   omega_star_tip = omega_star;
-  rho_A_ref = model.material.density_kg_m3 * model.section.area_m2;
+  density_base = model.material.density_profile.value(0.0);
+  area_base = model.section.properties_at(0.0).area_m2;
+  rho_A_ref = density_base * area_base;
   weight_length = L;
   if (!uniform) {
     K_nu_tip = model.shear_extension_stiffness(L, rod::Side::kLeft);
@@ -101,8 +104,9 @@ void RodProblem::properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& 
 
 void RodProblem::model_properties(double s, rod::Side side, Vec3& Kn, Vec3& Kw, Vec3& ws,
                                   double& wf) const {
-  Kn = model.shear_extension_stiffness(s, side);
-  Kw = model.bending_torsion_stiffness(s, side);
+  const rod::SectionStiffness K = model.stiffness_at(s, side);
+  Kn = K.shear_extension;
+  Kw = K.bending_torsion;
   ws = model.reference_curvature_at(s, side);
   wf = rho_A_ref > 0.0 ? model.mass_per_length_kg_m(s, side) / rho_A_ref : 1.0;
 }

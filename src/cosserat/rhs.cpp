@@ -384,7 +384,7 @@ void RodRhs::set_parameters(const rod::Loads& act, double lambda, const Eigen::V
     }
   }
   if (uniform) {
-    f_ext_W = lambda * model.material.density_kg_m3 * model.section.area_m2 * act.gravity_W_m_s2;
+    f_ext_W = lambda * density_base * area_base * act.gravity_W_m_s2;
   } else {
     f_ext_W = lambda * rho_A_ref * act.gravity_W_m_s2;  // times weight_factor(s) in the RHS
   }

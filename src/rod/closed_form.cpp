@@ -6,10 +6,13 @@
 #include "common/error.hpp"
 
 namespace tcasim::rod {
+namespace {
 
-ConstantStrains closed_form_strains(const RodModel& model, const std::vector<double>& cT) {
-  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
-  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+/// closed_form_strains with the base section's stiffnesses K and reference curvature omega*.
+ConstantStrains strains_of(const RodModel& model, const SectionStiffness& K,
+                           const Eigen::Vector3d& omega_star, const std::vector<double>& cT) {
+  const Eigen::Vector3d& K_nu = K.shear_extension;
+  const Eigen::Vector3d& K_omega = K.bending_torsion;
   double sum_T = 0.0, sum_Tx = 0.0, sum_Ty = 0.0;
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     // A string anchored inside the body (span_m) has no share of the base wrench.
@@ -23,15 +26,21 @@ ConstantStrains closed_form_strains(const RodModel& model, const std::vector<dou
   // omega*), the force sum c T e_z balances K_nu (nu - nu*).
   ConstantStrains s;
   s.e = Eigen::Vector3d(0.0, 0.0, -sum_T / K_nu.z());
-  s.omega = model.reference_curvature_B_1_m +
-            Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
+  s.omega = omega_star + Eigen::Vector3d(-sum_Ty / K_omega.x(), sum_Tx / K_omega.y(), 0.0);
   return s;
+}
+
+}  // namespace
+
+ConstantStrains closed_form_strains(const RodModel& model, const std::vector<double>& cT) {
+  return strains_of(model, model.stiffness_at(0.0), model.reference_curvature_at(0.0), cT);
 }
 
 std::vector<double> closed_form_elongations_m(const RodModel& model,
                                               const std::vector<double>& cT) {
-  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
-  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  const SectionStiffness K = model.stiffness_at(0.0);
+  const Eigen::Vector3d& K_nu = K.shear_extension;
+  const Eigen::Vector3d& K_omega = K.bending_torsion;
   std::vector<double> delta(model.actuators.size(), 0.0);
   for (std::size_t i = 0; i < model.actuators.size(); ++i) {
     const Eigen::Vector3d ri = model.actuators[i].routing.r(0.0);
@@ -63,8 +72,11 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
   const int n = static_cast<int>(tca_actuators.size());
   if (n == 0) return true;
   const double L = model.length_m;
-  const Eigen::Vector3d K_nu = model.shear_extension_stiffness();
-  const Eigen::Vector3d K_omega = model.bending_torsion_stiffness();
+  // The base section's properties, evaluated once for every evaluation of g below.
+  const SectionStiffness K = model.stiffness_at(0.0);
+  const Eigen::Vector3d& K_nu = K.shear_extension;
+  const Eigen::Vector3d& K_omega = K.bending_torsion;
+  const Eigen::Vector3d omega_star = model.reference_curvature_at(0.0);
   const Eigen::Vector3d nu_star = Eigen::Vector3d::UnitZ();
   Eigen::VectorXd g(n), gt(n), dT(n), Tt(n);
   Eigen::MatrixXd G(n, n);
@@ -76,7 +88,7 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
       const int i = tca_actuators[k];
       cT[i] = model.actuators[i].count * Tk[k];
     }
-    const ConstantStrains cf = closed_form_strains(model, cT);
+    const ConstantStrains cf = strains_of(model, K, omega_star, cT);
     const Eigen::Vector3d nu = nu_star + cf.e + extra.head<3>();
     const Eigen::Vector3d omega = cf.omega + extra.tail<3>();
     for (int k = 0; k < n; ++k) {

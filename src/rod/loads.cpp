@@ -144,8 +144,7 @@ double characteristic_force_N(const RodModel& model, const Loads& loads, double 
       tip_mass_kg == 0.0 ? a.tip_force_W_N
                          : Eigen::Vector3d(a.tip_force_W_N + tip_mass_kg * a.gravity_W_m_s2);
   double load = std::max(tip_force.norm(), a.tip_moment_W_Nm.norm() / L);
-  load = std::max(
-      load, model.material.density_kg_m3 * model.section.area_m2 * a.gravity_W_m_s2.norm() * L);
+  load = std::max(load, model.mass_per_length_kg_m(0.0) * a.gravity_W_m_s2.norm() * L);
   for (std::size_t i = 0; i < model.actuators.size() && i < a.actuators.size(); ++i) {
     const Actuator& act = model.actuators[i];
     if (act.drive.type == Drive::Type::kTension)

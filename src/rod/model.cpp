@@ -123,18 +123,26 @@ bool Section::varies() const {
            J_profile.is_constant());
 }
 
-void Section::set_base_values() {
-  const SectionProperties p = properties_at(0.0);
-  width_m = p.width_m;
-  height_m = p.height_m;
-  area_m2 = p.area_m2;
-  I_x_m4 = p.I_x_m4;
-  I_y_m4 = p.I_y_m4;
-  J_m4 = p.J_m4;
-}
-
 bool BodyMaterial::varies() const {
   return !(youngs_modulus_profile.is_constant() && density_profile.is_constant());
+}
+
+MaterialProperties BodyMaterial::properties_at(double s, Side side) const {
+  MaterialProperties p;
+  p.youngs_modulus_Pa = youngs_modulus_profile.value(s, side);
+  p.shear_modulus_Pa = shear_modulus(p.youngs_modulus_Pa);
+  p.density_kg_m3 = density_profile.value(s, side);
+  p.viscosity_Pa_s = viscosity_profile.value(s, side);
+  return p;
+}
+
+SectionStiffness section_stiffness(const SectionProperties& p, double E, double G) {
+  // [Pawlowski2019] text below Eq. (12): K_nu = diag(G A, G A, E A) (no shear correction
+  // factor), K_omega = diag(E I_x, E I_y, G J).
+  SectionStiffness k;
+  k.shear_extension = {G * p.area_m2, G * p.area_m2, E * p.area_m2};
+  k.bending_torsion = {E * p.I_x_m4, E * p.I_y_m4, G * p.J_m4};
+  return k;
 }
 
 double Section::half_extent_m(double dir_x, double dir_y) const {
@@ -147,12 +155,12 @@ double Section::half_extent_m(double dir_x, double dir_y) const {
   const double s = std::abs(dir_y) / norm;
   switch (shape) {
     case Shape::kCircle:
-      return 0.5 * width_m;
+      return 0.5 * width_profile.value(0.0);
     case Shape::kRectangle: {
       // The ray t (c, s) leaves the rectangle |x| <= w/2, |y| <= h/2 at the first edge it
       // meets; a zero component never limits it.
-      const double tx = c > 0.0 ? 0.5 * width_m / c : HUGE_VAL;
-      const double ty = s > 0.0 ? 0.5 * height_m / s : HUGE_VAL;
+      const double tx = c > 0.0 ? 0.5 * width_profile.value(0.0) / c : HUGE_VAL;
+      const double ty = s > 0.0 ? 0.5 * height_profile.value(0.0) / s : HUGE_VAL;
       return std::min(tx, ty);
     }
     case Shape::kCustom:
@@ -197,56 +205,42 @@ Eigen::Vector3d Routing::ddr(double s_m, Side side) const {
   return {-radius_m * w * w * std::cos(theta), -radius_m * w * w * std::sin(theta), 0.0};
 }
 
-Eigen::Vector3d RodModel::shear_extension_stiffness() const {
-  // [Pawlowski2019] text below Eq. (12): K_nu = diag(G A, G A, E A) (no shear correction factor).
-  const double GA = material.shear_modulus_Pa * section.area_m2;
-  const double EA = material.youngs_modulus_Pa * section.area_m2;
-  return {GA, GA, EA};
-}
-
-Eigen::Vector3d RodModel::bending_torsion_stiffness() const {
-  // [Pawlowski2019] text below Eq. (12): K_omega = diag(E I_x, E I_y, G J).
-  const double E = material.youngs_modulus_Pa;
-  return {E * section.I_x_m4, E * section.I_y_m4, material.shear_modulus_Pa * section.J_m4};
-}
-
-Eigen::Vector3d RodModel::weight_per_length_W_N_m() const {
-  // [Pawlowski2019] Eq. (14), corrected (docs/conventions.md): psi A g in the world frame.
-  return material.density_kg_m3 * section.area_m2 * gravity_W_m_s2;
-}
-
 bool RodModel::uniform_body() const {
   return !section.varies() && !material.varies() && reference_curvature_profile[0].is_constant() &&
          reference_curvature_profile[1].is_constant() &&
          reference_curvature_profile[2].is_constant();
 }
 
-Eigen::Vector3d RodModel::shear_extension_stiffness(double s, Side side) const {
-  if (uniform_body()) return shear_extension_stiffness();
-  const double A = section.properties_at(s, side).area_m2;
+SectionStiffness RodModel::stiffness_at(double s, Side side) const {
   const double E = material.youngs_modulus_profile.value(s, side);
-  const double G = E / (2.0 * (1.0 + material.poisson_ratio));
-  return {G * A, G * A, E * A};
+  return section_stiffness(section.properties_at(s, side), E, material.shear_modulus(E));
+}
+
+Eigen::Vector3d RodModel::shear_extension_stiffness(double s, Side side) const {
+  return stiffness_at(s, side).shear_extension;
 }
 
 Eigen::Vector3d RodModel::bending_torsion_stiffness(double s, Side side) const {
-  if (uniform_body()) return bending_torsion_stiffness();
-  const SectionProperties p = section.properties_at(s, side);
-  const double E = material.youngs_modulus_profile.value(s, side);
-  const double G = E / (2.0 * (1.0 + material.poisson_ratio));
-  return {E * p.I_x_m4, E * p.I_y_m4, G * p.J_m4};
+  return stiffness_at(s, side).bending_torsion;
 }
 
 double RodModel::mass_per_length_kg_m(double s, Side side) const {
-  if (uniform_body()) return material.density_kg_m3 * section.area_m2;
   return material.density_profile.value(s, side) * section.properties_at(s, side).area_m2;
 }
 
+Eigen::Vector3d RodModel::weight_per_length_W_N_m() const {
+  // [Pawlowski2019] Eq. (14), corrected (docs/conventions.md): psi A g in the world frame.
+  return mass_per_length_kg_m(0.0) * gravity_W_m_s2;
+}
+
 Eigen::Vector3d RodModel::reference_curvature_at(double s, Side side) const {
-  if (uniform_body()) return reference_curvature_B_1_m;
   return {reference_curvature_profile[0].value(s, side),
           reference_curvature_profile[1].value(s, side),
           reference_curvature_profile[2].value(s, side)};
+}
+
+void RodModel::set_reference_curvature(const Eigen::Vector3d& omega_B_1_m) {
+  for (int c = 0; c < 3; ++c) reference_curvature_profile[c] = Profile(omega_B_1_m[c]);
 }
 
 void RodModel::property_slopes(double s, Side side, Eigen::Vector3d& dK_se, Eigen::Vector3d& dK_bt,
@@ -259,7 +253,9 @@ void RodModel::property_slopes(double s, Side side, Eigen::Vector3d& dK_se, Eige
   }
   const SectionProperties p = section.properties_at(s, side);
   const SectionProperties dp = section.derivatives_at(s, side);
-  const double c = 1.0 / (2.0 * (1.0 + material.poisson_ratio));  // G = c E
+  // d/ds of section_stiffness(p, E, G) with G = c E (BodyMaterial::shear_modulus is linear in E):
+  // the product rule on each diagonal entry.
+  const double c = 1.0 / (2.0 * (1.0 + material.poisson_ratio));
   const double E = material.youngs_modulus_profile.value(s, side);
   const double dE = material.youngs_modulus_profile.slope(s, side);
   const double dGA = c * (dE * p.area_m2 + E * dp.area_m2);

@@ -26,51 +26,71 @@ struct SectionProperties {
   double area_m2 = 0.0, I_x_m4 = 0.0, I_y_m4 = 0.0, J_m4 = 0.0;
 };
 
+/// The body material's values at one s.
+struct MaterialProperties {
+  double youngs_modulus_Pa = 0.0;  ///< E
+  double shear_modulus_Pa = 0.0;   ///< G = E / (2 (1 + nu))
+  double density_kg_m3 = 0.0;      ///< psi
+  double viscosity_Pa_s = 0.0;     ///< eta, Kelvin-Voigt
+};
+
+/// The diagonal section matrices of a linear isotropic law at one s.
+struct SectionStiffness {
+  Eigen::Vector3d shear_extension;  ///< diag(G A, G A, E A)
+  Eigen::Vector3d bending_torsion;  ///< diag(E I_x, E I_y, G J)
+};
+
+/// The one derivation of the section matrices from a tensile modulus E and a shear modulus G
+/// ([Pawlowski2019] text below Eq. (12), no shear correction factor): with the elastic moduli
+/// [Pa] the stiffnesses K_nu [N] and K_omega [N m^2]; with the Kelvin-Voigt viscosities eta
+/// and eta_s [Pa s] the damping B_se [N s] and B_bt [N m^2 s].
+SectionStiffness section_stiffness(const SectionProperties& p, double E, double G);
+
 /// Saint-Venant torsion constant of a w x h rectangle [m^4] ([TimoshenkoGoodier1970] Sec. 109).
 double rectangle_saint_venant_torsion(double w_m, double h_m);
 
-/// Cross-section properties of the body. The scalar fields hold the values at s = 0; a body
-/// whose section varies along s (docs/scenario-format.md "Profiles along the body") has the
-/// given scalars as profiles, and properties_at() derives the others pointwise.
+/// Cross-section of the body: its shape and the scalars the file gives, each a profile along s
+/// (docs/scenario-format.md "Profiles along the body"; a constant is a one-piece profile). The
+/// derived properties are not stored: properties_at() computes them at each s.
 struct Section {
   enum class Shape { kCircle, kRectangle, kCustom };
   Shape shape = Shape::kCircle;
-  double width_m = 0.0;   ///< rectangle: along body x; circle: diameter
-  double height_m = 0.0;  ///< rectangle: along body y
-  double area_m2 = 0.0;   ///< A
-  double I_x_m4 = 0.0;    ///< second moment about body x (int y^2 dA)
-  double I_y_m4 = 0.0;    ///< second moment about body y (int x^2 dA)
-  double J_m4 = 0.0;      ///< torsion constant (polar by default, or Saint-Venant)
-  bool saint_venant_torsion = false;
-  /// The scalars the file gives, each a constant or a profile along s: circle: width (the
-  /// diameter); rectangle: width, height; custom: area, I_x, I_y, J.
+  bool saint_venant_torsion = false;  ///< rectangle: J by Saint-Venant, else polar
+  /// The scalars the file gives: circle: width (the diameter; height the same); rectangle:
+  /// width (along body x), height (along body y) [m]; custom: area A [m^2], I_x (int y^2 dA),
+  /// I_y (int x^2 dA), J (torsion constant) [m^4].
   Profile width_profile, height_profile, area_profile, I_x_profile, I_y_profile, J_profile;
-  /// The properties at s (at a jump: the limit from `side`): a circle's I is pi d(s)^4 / 64.
+  /// The properties at s (at a jump: the limit from `side`): a circle's I is pi d(s)^4 / 64,
+  /// its J (and a rectangle's unless Saint-Venant) the polar moment I_x + I_y.
   SectionProperties properties_at(double s, Side side = Side::kRight) const;
   /// d/ds of properties_at (the slopes of the profiles through the shape's formulas; the
   /// Saint-Venant J of a rectangle by central differences of its series in w and h).
   SectionProperties derivatives_at(double s, Side side = Side::kRight) const;
   /// True if any given scalar is a profile.
   bool varies() const;
-  /// Sets the scalar fields to properties_at(0).
-  void set_base_values();
-  /// Half extent of the section along the direction (dir_x, dir_y) in the section plane
-  /// (any non-zero length) [m]: the distance from the centerline to the edge, used by the
-  /// radius metric and the actuator-offset check. Circle: D/2; rectangle: distance to the
-  /// first edge the ray meets. Throws DomainError for a custom section (it has no outline)
-  /// and for a zero or non-finite direction.
+  /// Half extent of the section at the base (s = 0) along the direction (dir_x, dir_y) in the
+  /// section plane (any non-zero length) [m]: the distance from the centerline to the edge,
+  /// used by the radius metric and the actuator-offset check. Circle: D/2; rectangle: distance
+  /// to the first edge the ray meets. Throws DomainError for a custom section (it has no
+  /// outline) and for a zero or non-finite direction.
   double half_extent_m(double dir_x, double dir_y) const;
 };
 
-/// Linear elastic, isotropic body material.
+/// Linear elastic, isotropic body material: E, psi and eta are profiles along s (a constant is
+/// a one-piece profile), G is not stored but derived from E and nu (shear_modulus()).
 struct BodyMaterial {
-  double youngs_modulus_Pa = 0.0;  ///< E
+  Profile youngs_modulus_profile;  ///< E [Pa]
   double poisson_ratio = 0.0;      ///< nu
-  double shear_modulus_Pa = 0.0;   ///< G = E / (2 (1 + nu))
-  double density_kg_m3 = 0.0;      ///< psi (0 allowed: massless)
-  double viscosity_Pa_s = 0.0;     ///< eta, Kelvin-Voigt (dynamics only; >= 0)
-  /// E, psi and eta along s (the scalar fields above hold their values at s = 0).
-  Profile youngs_modulus_profile, density_profile, viscosity_profile;
+  Profile density_profile;         ///< psi [kg/m^3] (0 allowed: massless)
+  Profile viscosity_profile;       ///< eta [Pa s], Kelvin-Voigt (dynamics only; >= 0)
+  /// G = E / (2 (1 + nu)) of a tensile modulus E [Pa]; of a Kelvin-Voigt viscosity eta, the
+  /// shear viscosity eta_s [Pa s] likewise.
+  double shear_modulus(double youngs_modulus) const {
+    return youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+  }
+  /// E, G, psi and eta at s (at a jump: the limit from `side`).
+  MaterialProperties properties_at(double s, Side side = Side::kRight) const;
+  /// True if E or psi is a profile (eta is the dynamics' business: it reads viscosity_profile).
   bool varies() const;
 };
 
@@ -184,8 +204,8 @@ struct RodModel {
   double length_m = 0.0;  ///< L, reference centerline length
   Section section;
   BodyMaterial material;
-  Eigen::Vector3d reference_curvature_B_1_m = Eigen::Vector3d::Zero();  ///< omega* at s = 0
-  /// omega* along s, per body-frame component (constants unless the file gives profiles).
+  /// omega* [1/m] along s, per body-frame component (constants unless the file gives profiles;
+  /// reference_curvature_at() reads it).
   std::array<Profile, 3> reference_curvature_profile;
   Eigen::Vector3d gravity_W_m_s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d tip_force_W_N = Eigen::Vector3d::Zero();
@@ -207,23 +227,27 @@ struct RodModel {
   /// Body-fixed points both solvers report exactly at their s (`probes`, default none).
   std::vector<Probe> probes;
 
-  /// K_nu = diag(G A, G A, E A) [N].
-  Eigen::Vector3d shear_extension_stiffness() const;
-  /// K_omega = diag(E I_x, E I_y, G J) [N m^2].
-  Eigen::Vector3d bending_torsion_stiffness() const;
-  /// Weight per unit length psi A g in the world frame [N/m].
-  Eigen::Vector3d weight_per_length_W_N_m() const;
-
-  // --- Properties along s (docs/scenario-format.md "Profiles along the body"). At a
-  // breakpoint where a profile jumps, `side` selects the one-sided limit. For a uniform
-  // body they equal the s-independent functions above.
+  // --- Properties along s (docs/scenario-format.md "Profiles along the body"), all read from
+  // the profiles of section, material and omega*. At a breakpoint where a profile jumps,
+  // `side` selects the one-sided limit. Without s: the values at the base, s = 0, which are
+  // those of every s for a uniform body (a constant profile returns its one value, so a uniform
+  // body's properties are the same numbers at every s).
   /// True if no section scalar, E, density or omega* component varies along s.
   bool uniform_body() const;
-  Eigen::Vector3d shear_extension_stiffness(double s, Side side = Side::kRight) const;
-  Eigen::Vector3d bending_torsion_stiffness(double s, Side side = Side::kRight) const;
+  /// K_nu and K_omega at s: section_stiffness() of the section there with E(s) and G(s).
+  SectionStiffness stiffness_at(double s, Side side = Side::kRight) const;
+  /// K_nu = diag(G A, G A, E A) at s [N].
+  Eigen::Vector3d shear_extension_stiffness(double s = 0.0, Side side = Side::kRight) const;
+  /// K_omega = diag(E I_x, E I_y, G J) at s [N m^2].
+  Eigen::Vector3d bending_torsion_stiffness(double s = 0.0, Side side = Side::kRight) const;
   /// psi(s) A(s) [kg/m].
   double mass_per_length_kg_m(double s, Side side = Side::kRight) const;
+  /// Weight per unit length psi A g at the base in the world frame [N/m].
+  Eigen::Vector3d weight_per_length_W_N_m() const;
+  /// omega*(s) [1/m] (body frame).
   Eigen::Vector3d reference_curvature_at(double s, Side side = Side::kRight) const;
+  /// Sets omega* constant along s [1/m] (body frame).
+  void set_reference_curvature(const Eigen::Vector3d& omega_B_1_m);
   /// d/ds of the two stiffnesses and of omega* at s (zero for a uniform body): what the
   /// shooting right-hand side needs, n_B' = K_nu e' + K_nu' e and likewise for m_B.
   void property_slopes(double s, Side side, Eigen::Vector3d& dK_se, Eigen::Vector3d& dK_bt,

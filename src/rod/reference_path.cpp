@@ -92,8 +92,7 @@ ReferencePath reference_path(const Routing& routing, const Eigen::Vector3d& omeg
   if (routing.type == Routing::Type::kSpline) {
     // Piece by piece between the knots (the model version, with a constant omega*).
     RodModel body;
-    body.reference_curvature_B_1_m = omega_B_1_m;
-    for (int c = 0; c < 3; ++c) body.reference_curvature_profile[c] = Profile(omega_B_1_m[c]);
+    body.set_reference_curvature(omega_B_1_m);
     return reference_path(routing, body, s0_m, s1_m);
   }
   const double length_m = s1_m - s0_m;
@@ -152,7 +151,7 @@ ReferencePath reference_path(const Routing& routing, const RodModel& model, doub
   const auto& prof = model.reference_curvature_profile;
   const bool spline = routing.type == Routing::Type::kSpline;
   if (!spline && prof[0].is_constant() && prof[1].is_constant() && prof[2].is_constant()) {
-    return reference_path(routing, model.reference_curvature_B_1_m, s0_m, s1_m);
+    return reference_path(routing, model.reference_curvature_at(0.0), s0_m, s1_m);
   }
   // A spline is smooth between its knots (docs/scenario-format.md "General routing and string
   // extent"): its knots are piece ends too, each piece evaluated on its own side of a kink.

@@ -150,8 +150,6 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   if (body.has("reference_curvature_1_m")) {
     m.reference_curvature_profile =
         parse_reference_curvature(body, "reference_curvature_1_m", m.length_m);
-    for (int i = 0; i < 3; ++i)
-      m.reference_curvature_B_1_m[i] = m.reference_curvature_profile[i].value(0.0);
   }
 
   if (o.has("gravity_m_s2")) {

@@ -34,8 +34,8 @@ std::optional<double> edge_distance(const Section& s, double x, double y) {
 Section narrowest_section(const Section& s) {
   if (!s.varies()) return s;
   Section n = s;
-  n.width_m = s.width_profile.min_value();
-  n.height_m = s.height_profile.min_value();
+  n.width_profile = Profile(s.width_profile.min_value());
+  n.height_profile = Profile(s.height_profile.min_value());
   return n;
 }
 
@@ -46,8 +46,8 @@ Section outline_at(const Section& s, double s_m) {
   Section n = s;
   const SectionProperties l = s.properties_at(s_m, Side::kLeft);
   const SectionProperties r = s.properties_at(s_m, Side::kRight);
-  n.width_m = std::min(l.width_m, r.width_m);
-  n.height_m = std::min(l.height_m, r.height_m);
+  n.width_profile = Profile(std::min(l.width_m, r.width_m));
+  n.height_profile = Profile(std::min(l.height_m, r.height_m));
   return n;
 }
 

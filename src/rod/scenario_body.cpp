@@ -53,7 +53,6 @@ Section parse_section(const json& j, const std::string& path, double length_m) {
     s.I_y_profile = positive("I_y_m4");
     s.J_profile = positive("J_m4");
   }
-  s.set_base_values();
   return s;
 }
 
@@ -61,19 +60,16 @@ BodyMaterial parse_body_material(const Obj& o, double length_m) {
   BodyMaterial m;
   m.youngs_modulus_profile =
       parse_profile_key(o, "youngs_modulus_Pa", length_m, ValueRule::kPositive);
-  m.youngs_modulus_Pa = m.youngs_modulus_profile.value(0.0);
   m.poisson_ratio = o.number("poisson_ratio");
-  // 0.5 (incompressible) is allowed: the paper uses it for EcoFlex.
+  // 0.5 (incompressible) is allowed: the paper uses it for EcoFlex. The file gives no shear
+  // modulus: G = E / (2 (1 + nu)) at each s (BodyMaterial::shear_modulus).
   require(m.poisson_ratio >= 0.0 && m.poisson_ratio <= 0.5, o.key("poisson_ratio"), m.poisson_ratio,
           "must lie in [0, 0.5]");
-  m.shear_modulus_Pa = m.youngs_modulus_Pa / (2.0 * (1.0 + m.poisson_ratio));
   if (o.has("density_kg_m3")) {
     m.density_profile = parse_profile_key(o, "density_kg_m3", length_m, ValueRule::kNonNegative);
-    m.density_kg_m3 = m.density_profile.value(0.0);
   }
   if (o.has("viscosity_Pa_s")) {
     m.viscosity_profile = parse_profile_key(o, "viscosity_Pa_s", length_m, ValueRule::kNonNegative);
-    m.viscosity_Pa_s = m.viscosity_profile.value(0.0);
   }
   return m;
 }

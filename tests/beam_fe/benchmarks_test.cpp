@@ -26,7 +26,7 @@ rod::RodModel bend(double J, double P) {
   m.R_WB0 << 0, 0, 1,  //
       1, 0, 0,         //
       0, 1, 0;
-  m.reference_curvature_B_1_m = {0.0, 1.0 / R, 0.0};
+  m.set_reference_curvature({0.0, 1.0 / R, 0.0});
   m.tip_force_W_N = {0.0, 0.0, P};
   return m;
 }

@@ -120,7 +120,7 @@ double rest_drift(BeamDynamics& d, const rod::Loads& loads, int steps) {
 // held closed by a tendon (coil contact), with and without damping.
 TEST(BeamDynamicsTca, StaticStatesWithTcasAtConstantTemperatureStayAtRest) {
   rod::RodModel strut = test_support::strut_rod(0.5, units::degC_to_K(25.0));
-  strut.material.density_kg_m3 = 1040.0;  // the square manipulator's body, with mass
+  strut.material.density_profile = rod::Profile(1040.0);  // the square manipulator's body, with mass
   const std::vector<std::pair<std::string, rod::RodModel>> cases = {
       {"circular manipulator at 90 degC", scenario_model(scenario_json("circular-manipulator"))},
       {"segmented TCA", scenario_model(scenario_json("segmented-tca"))},

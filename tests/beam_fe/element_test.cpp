@@ -46,7 +46,7 @@ double scaled_difference(const MatrixXd& A, const MatrixXd& B) {
 /// straight and one helical tension string.
 rod::RodModel test_rod() {
   rod::RodModel m = testing::stiffness_rod(1.0, 3.0, 2.0, 0.5, 0.7, 0.4);
-  m.reference_curvature_B_1_m = {0.3, -0.2, 0.1};
+  m.set_reference_curvature({0.3, -0.2, 0.1});
   testing::add_tension_string(m, "straight", 0.1, -0.05, 0.2, 2);
   testing::add_tension_string(m, "helix", 0.08, 0.0, 0.15, 1, 0.7);
   return m;

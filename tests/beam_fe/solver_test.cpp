@@ -396,7 +396,7 @@ TEST(BeamFeSolver, ConstantStrainGuessHasTheExactTcaTensionAndNodalRotations) {
   // the closed-form TCA equation and its nodal rotations R0 exp(s omega) are the converged
   // FE ones (exact on any mesh); positions differ only by the interpolation of the arc.
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 0.0);
-  m.reference_curvature_B_1_m = {0.2, -0.5, 0.0};
+  m.set_reference_curvature({0.2, -0.5, 0.0});
   testing::add_tca_string(m, "tca", testing::manipulator_tca(), 0.003, 0.0, units::degC_to_K(90.0));
   testing::add_tension_string(m, "pull", -0.002, 0.002, 0.01);
   const Options opt = options(5, 2);

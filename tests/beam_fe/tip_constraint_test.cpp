@@ -23,7 +23,7 @@ using Eigen::Vector3d;
 
 /// Stress-free tip of a model (exact arc of omega* from the clamp).
 Vector3d reference_tip(const rod::RodModel& m) {
-  const Vector3d phi = m.length_m * m.reference_curvature_B_1_m;
+  const Vector3d phi = m.length_m * m.reference_curvature_at(0.0);
   return m.base_position_W_m + m.R_WB0 * (m.length_m * so3::left_jacobian(phi) * Vector3d::UnitZ());
 }
 

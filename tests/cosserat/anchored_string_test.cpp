@@ -155,7 +155,7 @@ TEST(ShootingAnchoredString, SensitivityJacobianThroughSplineKinksMatchesCentral
 TEST(ShootingAnchoredString, AnchoredStringsConvergeAndBalanceGlobally) {
   rod::RodModel m = anchored_rod();
   m.gravity_W_m_s2 = {0.0, -9.81, 0.0};
-  m.material.density_kg_m3 = 1000;
+  m.material.density_profile = rod::Profile(1000);
   ShootingSolver solver(m, rk4(64));
   Solution sol;
   const Summary s = solver.solve(rod::Loads::from_model(m), sol);

@@ -106,7 +106,7 @@ constexpr double kExactRelativeError = 1e-11;
 TEST(LieGroupShooting, ConstantStrainRodIsExactAtAnyStepCount) {
   // Straight strings at constant offsets, no gravity: constant strains (docs/conventions.md).
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
-  m.reference_curvature_B_1_m = Vector3d(4.0, -30.0, 0.0);  // closed form: omega_z = 0
+  m.set_reference_curvature(Vector3d(4.0, -30.0, 0.0));  // closed form: omega_z = 0
   add_tension_string(m, "a", 0.0030, 0.0010, 0.004);
   add_tension_string(m, "b", -0.0020, 0.0025, 0.0015, 2);
   const rod::Loads act = rod::Loads::from_model(m);
@@ -141,7 +141,7 @@ TEST(LieGroupShooting, ConstantStrainRodIsExactAtAnyStepCount) {
 /// wrench, a straight string, a helical string and a TCA (the shooting tests' 3-D rod).
 rod::RodModel varying_strain_rod(bool with_tca) {
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
-  m.reference_curvature_B_1_m = Vector3d(1.0, -2.0, 0.5);
+  m.set_reference_curvature(Vector3d(1.0, -2.0, 0.5));
   m.gravity_W_m_s2 = Vector3d(3.0, -2.0, -9.0);
   m.tip_force_W_N = Vector3d(0.002, 0.001, -0.001);
   m.tip_moment_W_Nm = Vector3d(0.0, 1e-5, 2e-5);

@@ -165,7 +165,7 @@ Solved solve_with(const rod::RodModel& m, const Options& o, const rod::Loads& ac
 
 /// Weight of a rod [N].
 double weight_N(const rod::RodModel& m) {
-  return m.material.density_kg_m3 * m.section.area_m2 * m.length_m * m.gravity_W_m_s2.norm();
+  return m.mass_per_length_kg_m(0.0) * m.length_m * m.gravity_W_m_s2.norm();
 }
 
 void expect_same_solution(const Solved& planar_solve, const Solved& full, const rod::RodModel& m,
@@ -238,7 +238,7 @@ rod::RodModel three_string_rod() {
   // Body x -> world y, body y -> world -x, body z -> world z (exact entries).
   m.R_WB0 << 0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
   m.base_position_W_m = {0.1, -0.2, 0.3};
-  m.reference_curvature_B_1_m = {0.0, 2.0, 0.0};
+  m.set_reference_curvature({0.0, 2.0, 0.0});
   m.gravity_W_m_s2 = {0.0, 3.0, -9.81};
   testing::add_tension_string(m, "left", -0.002, 0.0, 0.01);
   testing::add_tension_string(m, "right", 0.0025, 0.0, 0.004, 2);

@@ -325,7 +325,7 @@ TEST(ShootingSigns, HeatedExtensionTcaAtPlusXBendsAwayTowardMinusX) {
 rod::RodModel general_3d_rod() {
   // Gravity (oblique), a tip force and moment, a helical string and a straight one.
   rod::RodModel m = testing::circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
-  m.reference_curvature_B_1_m = Vector3d(1.0, -2.0, 0.5);
+  m.set_reference_curvature(Vector3d(1.0, -2.0, 0.5));
   m.gravity_W_m_s2 = Vector3d(3.0, -2.0, -9.0);
   m.tip_force_W_N = Vector3d(0.002, 0.001, -0.001);
   m.tip_moment_W_Nm = Vector3d(0.0, 1e-5, 2e-5);
@@ -574,7 +574,7 @@ TEST(ShootingGuess, GravityGuessMatchesASaggingCantileverToItsSmallDeflection) {
   Solution sol;
   ASSERT_TRUE(solver.solve(act, sol).converged());
   const Eigen::VectorXd guess = solver.initial_guess(act);
-  const double w = m.material.density_kg_m3 * m.section.area_m2 * 9.81;
+  const double w = m.mass_per_length_kg_m(0.0) * 9.81;
   const double kappa0 = w * m.length_m * m.length_m / (2.0 * m.bending_torsion_stiffness().y());
   EXPECT_NEAR(std::abs(sol.unknowns[4]), kappa0, 1e-3 * kappa0);  // the beam formula itself
   constexpr double kSmallDeflection = 2e-3;  // relative, ~(0.024)^2 = 6e-4 with margin

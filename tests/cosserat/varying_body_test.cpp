@@ -161,7 +161,7 @@ TEST(ShootingVaryingBody, LoadedVaryingBodyConvergesAndBalancesGlobally) {
   m.gravity_W_m_s2 = {0.0, 0.0, -9.81};
   m.material.density_profile =
       rod::Profile({0.0, 0.05, 0.05, m.length_m}, {1000, 1000, 2000, 1500});
-  m.material.density_kg_m3 = 1000;
+  m.material.density_profile = rod::Profile(1000);
   ShootingSolver solver(m, rk4(64));
   Solution sol;
   const Summary s = solver.solve(rod::Loads::from_model(m), sol);

@@ -176,12 +176,12 @@ TEST(AsymptoticRange, FloorEstimateGrowsWithTheStiffnessRatioAndTheNodes) {
   rod::RodModel m;
   m.length_m = 2.0;
   m.section.shape = rod::Section::Shape::kCustom;
-  m.material.youngs_modulus_Pa = 1.0;
-  m.material.shear_modulus_Pa = 0.5;
-  m.section.area_m2 = 4e12;  // EA; GA = 2e12
-  m.section.I_x_m4 = 4.0;
-  m.section.I_y_m4 = 8.0;
-  m.section.J_m4 = 1.0;
+  m.material.youngs_modulus_profile = rod::Profile(1.0);
+  m.material.poisson_ratio = 0.0;               // G = 0.5
+  m.section.area_profile = rod::Profile(4e12);  // EA; GA = 2e12
+  m.section.I_x_profile = rod::Profile(4.0);
+  m.section.I_y_profile = rod::Profile(8.0);
+  m.section.J_profile = rod::Profile(1.0);
   // eps nodes max(EA, GA) L^2 / min(EI) L = eps 9 4e12 4 / 4 2 (4 quadratic elements).
   EXPECT_NEAR(fe_round_off_floor_m(m, 2, 4), 2.220446049250313e-16 * 9 * 8e12, kRoundOff * 1.6e-2);
 }

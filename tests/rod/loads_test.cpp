@@ -102,7 +102,7 @@ TEST(Loads, CharacteristicForceIsTheLargerOfTheBendingScaleAndTheLargestLoad) {
   l = Loads::from_model(m);
   l.gravity_W_m_s2 = {0.0, 0.0, -1e6};
   EXPECT_DOUBLE_EQ(characteristic_force_N(m, l),
-                   m.material.density_kg_m3 * m.section.area_m2 * 1e6 * L);
+                   m.mass_per_length_kg_m(0.0) * 1e6 * L);
 }
 
 }  // namespace

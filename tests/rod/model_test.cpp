@@ -22,15 +22,16 @@ constexpr double kFdRelative = 1e-8;
 Section rectangle(double w, double h) {
   Section s;
   s.shape = Section::Shape::kRectangle;
-  s.width_m = w;
-  s.height_m = h;
+  s.width_profile = Profile(w);
+  s.height_profile = Profile(h);
   return s;
 }
 
 TEST(Section, CircleHalfExtentIsRadiusInEveryDirection) {
   Section s;
   s.shape = Section::Shape::kCircle;
-  s.width_m = 0.008;
+  s.width_profile = Profile(0.008);
+  s.height_profile = Profile(0.008);
   for (double a = 0.0; a < 2.0 * units::kPi; a += 0.3) {
     EXPECT_NEAR(s.half_extent_m(std::cos(a), std::sin(a)), 0.004, kRoundOff);
   }
@@ -101,20 +102,50 @@ TEST(Routing, HelixDerivativesMatchCentralFiniteDifferences) {
 
 TEST(RodModel, StiffnessesAreDiagonalSectionTimesModulus) {
   RodModel m;
-  m.section.area_m2 = 2.0;
-  m.section.I_x_m4 = 3.0;
-  m.section.I_y_m4 = 5.0;
-  m.section.J_m4 = 7.0;
-  m.material.youngs_modulus_Pa = 11.0;
-  m.material.shear_modulus_Pa = 13.0;
-  EXPECT_EQ(m.shear_extension_stiffness(), Eigen::Vector3d(26.0, 26.0, 22.0));
-  EXPECT_EQ(m.bending_torsion_stiffness(), Eigen::Vector3d(33.0, 55.0, 91.0));
+  m.section.shape = Section::Shape::kCustom;
+  m.section.area_profile = Profile(2.0);
+  m.section.I_x_profile = Profile(3.0);
+  m.section.I_y_profile = Profile(5.0);
+  m.section.J_profile = Profile(7.0);
+  m.material.youngs_modulus_profile = Profile(11.0);
+  m.material.poisson_ratio = 0.375;  // G = 11 / 2.75 = 4, exact in binary
+  EXPECT_EQ(m.material.shear_modulus(11.0), 4.0);
+  EXPECT_EQ(m.shear_extension_stiffness(), Eigen::Vector3d(8.0, 8.0, 22.0));
+  EXPECT_EQ(m.bending_torsion_stiffness(), Eigen::Vector3d(33.0, 55.0, 28.0));
+}
+
+TEST(RodModel, ConstantProfilesGiveTheSameNumbersAtEverySAsAtTheBase) {
+  RodModel m;
+  m.length_m = 0.2;
+  m.section.shape = Section::Shape::kRectangle;
+  m.section.saint_venant_torsion = true;
+  m.section.width_profile = Profile(0.01);
+  m.section.height_profile = Profile(0.004);
+  m.material.youngs_modulus_profile = Profile(1e6);
+  m.material.poisson_ratio = 0.3;
+  m.material.density_profile = Profile(1100.0);
+  m.set_reference_curvature({0.5, -0.25, 0.0});
+  ASSERT_TRUE(m.uniform_body());
+  const SectionStiffness K0 = m.stiffness_at(0.0);
+  const SectionProperties p0 = m.section.properties_at(0.0);
+  const double G = 1e6 / (2.0 * (1.0 + 0.3));
+  EXPECT_EQ(K0.shear_extension, Eigen::Vector3d(G * p0.area_m2, G * p0.area_m2, 1e6 * p0.area_m2));
+  EXPECT_EQ(K0.bending_torsion, Eigen::Vector3d(1e6 * p0.I_x_m4, 1e6 * p0.I_y_m4, G * p0.J_m4));
+  for (const double s : {0.05, 0.1, 0.2}) {
+    for (const Side side : {Side::kLeft, Side::kRight}) {
+      EXPECT_EQ(m.shear_extension_stiffness(s, side), K0.shear_extension);
+      EXPECT_EQ(m.bending_torsion_stiffness(s, side), K0.bending_torsion);
+      EXPECT_EQ(m.mass_per_length_kg_m(s, side), 1100.0 * p0.area_m2);
+      EXPECT_EQ(m.reference_curvature_at(s, side), Eigen::Vector3d(0.5, -0.25, 0.0));
+    }
+  }
 }
 
 TEST(RodModel, WeightPerLengthIsDensityTimesAreaTimesWorldGravity) {
   RodModel m;
-  m.section.area_m2 = 1e-4;
-  m.material.density_kg_m3 = 1000.0;
+  m.section.shape = Section::Shape::kCustom;
+  m.section.area_profile = Profile(1e-4);
+  m.material.density_profile = Profile(1000.0);
   m.gravity_W_m_s2 = {0.0, -3.0, -9.81};
   // The body frame plays no role: gravity is a world-frame density.
   m.R_WB0 << 0, -1, 0, 1, 0, 0, 0, 0, 1;

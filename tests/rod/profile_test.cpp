@@ -61,7 +61,8 @@ TEST(ProfileScenario, TaperedCircleGivesPointwiseStiffnessAndMass) {
   EXPECT_FALSE(m.uniform_body());
   EXPECT_EQ(m.breakpoints(), std::vector<double>{0.1});
   EXPECT_TRUE(m.jumps_at(0.1));
-  EXPECT_DOUBLE_EQ(m.material.viscosity_Pa_s, 3.0);
+  EXPECT_TRUE(m.material.viscosity_profile.is_constant());
+  EXPECT_DOUBLE_EQ(m.material.properties_at(0.1).viscosity_Pa_s, 3.0);
   const double d_mid = 0.0075;
   const double I = units::kPi * std::pow(d_mid, 4) / 64.0;
   EXPECT_NEAR(m.bending_torsion_stiffness(0.1).x(), 1e6 * I, 1e-12 * 1e6 * I);
@@ -69,9 +70,9 @@ TEST(ProfileScenario, TaperedCircleGivesPointwiseStiffnessAndMass) {
   const double A = units::kPi * d_mid * d_mid / 4.0;
   EXPECT_NEAR(m.mass_per_length_kg_m(0.1, Side::kLeft), 1000 * A, 1e-12);
   EXPECT_NEAR(m.mass_per_length_kg_m(0.1, Side::kRight), 2000 * A, 1e-12);
-  // The scalar fields keep the values at s = 0.
-  EXPECT_DOUBLE_EQ(m.section.width_m, 0.01);
-  EXPECT_DOUBLE_EQ(m.section.I_x_m4, units::kPi * std::pow(0.01, 4) / 64.0);
+  // The properties at the base.
+  EXPECT_DOUBLE_EQ(m.section.properties_at(0.0).width_m, 0.01);
+  EXPECT_DOUBLE_EQ(m.section.properties_at(0.0).I_x_m4, units::kPi * std::pow(0.01, 4) / 64.0);
 }
 
 TEST(ProfileScenario, ConstantsGiveAUniformBodyWithTheSameNumbers) {
@@ -79,7 +80,7 @@ TEST(ProfileScenario, ConstantsGiveAUniformBodyWithTheSameNumbers) {
   EXPECT_TRUE(m.uniform_body());
   EXPECT_TRUE(m.breakpoints().empty());
   EXPECT_EQ(m.shear_extension_stiffness(0.1), m.shear_extension_stiffness());
-  EXPECT_DOUBLE_EQ(m.material.viscosity_Pa_s, 0.0);
+  EXPECT_DOUBLE_EQ(m.material.properties_at(0.1).viscosity_Pa_s, 0.0);
 }
 
 TEST(ProfileScenario, CurvatureComponentsAndRectangleAndCustomTakeProfiles) {

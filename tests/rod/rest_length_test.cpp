@@ -119,7 +119,7 @@ TEST(RestLength, TendonOnAPrecurvedBodyHasZeroElongationAtRest) {
   const RodModel m = read_scenario(file.string());
   const Actuator& a = m.actuators.at(0);
   const Eigen::Vector3d q =
-      Eigen::Vector3d::UnitZ() + m.reference_curvature_B_1_m.cross(a.routing.r(0.0));
+      Eigen::Vector3d::UnitZ() + m.reference_curvature_at(0.0).cross(a.routing.r(0.0));
   EXPECT_NEAR(a.rest_length_m / (m.length_m * q.norm()), 1.0, kRoundOff);
   EXPECT_GT(a.rest_length_m - m.length_m, 8e-4);  // the 0.88 mm that used to be reported
 }

@@ -223,8 +223,8 @@ RodModel circle_body(double d, double length_m) {
   RodModel m;
   m.length_m = length_m;
   m.section.shape = Section::Shape::kCircle;
-  m.section.width_m = d;
-  m.section.height_m = d;
+  m.section.width_profile = Profile(d);
+  m.section.height_profile = Profile(d);
   return m;
 }
 
@@ -251,8 +251,8 @@ TEST(ThreePointRadius, RectangleBentDiagonallyWithMovedBaseUsesTheEdgeAlongTheDi
   const double R = 0.04, L = 0.05, w = 0.010, h = 0.004;
   RodModel m = circle_body(0.0, L);
   m.section.shape = Section::Shape::kRectangle;
-  m.section.width_m = w;
-  m.section.height_m = h;
+  m.section.width_profile = Profile(w);
+  m.section.height_profile = Profile(h);
   const double beta = units::kPi / 4.0;
   // Toward 45 degrees the top edge (y = h/2) is met first: h/2 * sqrt(2) from the centerline.
   const double half_extent = 0.5 * h * std::sqrt(2.0);

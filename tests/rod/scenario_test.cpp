@@ -118,16 +118,18 @@ TEST(ParseScenario, FullScenarioGivesTheBodyNumbers) {
   EXPECT_EQ(m.length_m, 0.040);
   const double d = 0.008;
   EXPECT_EQ(m.section.shape, Section::Shape::kCircle);
-  EXPECT_NEAR(m.section.area_m2, units::kPi * d * d / 4.0, kRoundOff * 1e-4);
-  EXPECT_NEAR(m.section.I_x_m4 / (units::kPi * std::pow(d, 4) / 64.0), 1.0, kRoundOff);
-  EXPECT_NEAR(m.section.I_y_m4 / m.section.I_x_m4, 1.0, kRoundOff);
+  const SectionProperties p = m.section.properties_at(0.0);
+  EXPECT_NEAR(p.area_m2, units::kPi * d * d / 4.0, kRoundOff * 1e-4);
+  EXPECT_NEAR(p.I_x_m4 / (units::kPi * std::pow(d, 4) / 64.0), 1.0, kRoundOff);
+  EXPECT_NEAR(p.I_y_m4 / p.I_x_m4, 1.0, kRoundOff);
   // Polar moment (the default), which for a circle is also the Saint-Venant constant.
-  EXPECT_NEAR(m.section.J_m4 / (units::kPi * std::pow(d, 4) / 32.0), 1.0, kRoundOff);
-  EXPECT_EQ(m.material.youngs_modulus_Pa, 37.8e3);
+  EXPECT_NEAR(p.J_m4 / (units::kPi * std::pow(d, 4) / 32.0), 1.0, kRoundOff);
+  const MaterialProperties mat = m.material.properties_at(0.0);
+  EXPECT_EQ(mat.youngs_modulus_Pa, 37.8e3);
   // G = E/(2 (1 + nu)) with nu = 0.5 (EcoFlex, as in the paper).
-  EXPECT_NEAR(m.material.shear_modulus_Pa, 12.6e3, 1e-9);
-  EXPECT_EQ(m.material.density_kg_m3, 1040.0);
-  EXPECT_EQ(m.reference_curvature_B_1_m, Eigen::Vector3d(0.5, -0.25, 0.0));
+  EXPECT_NEAR(mat.shear_modulus_Pa, 12.6e3, 1e-9);
+  EXPECT_EQ(mat.density_kg_m3, 1040.0);
+  EXPECT_EQ(m.reference_curvature_at(0.0), Eigen::Vector3d(0.5, -0.25, 0.0));
   EXPECT_EQ(m.gravity_W_m_s2, Eigen::Vector3d(0, 0, -9.81));
   EXPECT_EQ(m.tip_force_W_N, Eigen::Vector3d(0.001, 0, 0));
   EXPECT_EQ(m.tip_moment_W_Nm, Eigen::Vector3d(0, 0.0002, 0));
@@ -201,7 +203,7 @@ TEST(ParseScenario, TendonRestLengthIsThePathLengthByQuadrature) {
   for (int i = 0; i <= kIntervals; ++i) {
     const double s = i * h;
     const double f = (Eigen::Vector3d::UnitZ() +
-                      m.reference_curvature_B_1_m.cross(helix.routing.r(s)) + helix.routing.dr(s))
+                      m.reference_curvature_at(s).cross(helix.routing.r(s)) + helix.routing.dr(s))
                          .norm();
     sum += f * ((i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0));
   }
@@ -217,14 +219,15 @@ TEST(ParseScenario, RectangleSectionGivesSecondMomentsAboutBodyAxes) {
   const RodModel m = parse_scenario(minimal());
   const double w = 0.010, h = 0.004;
   EXPECT_EQ(m.section.shape, Section::Shape::kRectangle);
-  EXPECT_NEAR(m.section.area_m2, w * h, 1e-18);
-  EXPECT_NEAR(m.section.I_x_m4 / (w * h * h * h / 12.0), 1.0, kRoundOff);
-  EXPECT_NEAR(m.section.I_y_m4 / (h * w * w * w / 12.0), 1.0, kRoundOff);
-  EXPECT_GT(m.section.I_y_m4, m.section.I_x_m4);  // wider along x: stiffer about y
-  EXPECT_NEAR(m.section.J_m4 / (m.section.I_x_m4 + m.section.I_y_m4), 1.0, kRoundOff);
+  const SectionProperties p = m.section.properties_at(0.0);
+  EXPECT_NEAR(p.area_m2, w * h, 1e-18);
+  EXPECT_NEAR(p.I_x_m4 / (w * h * h * h / 12.0), 1.0, kRoundOff);
+  EXPECT_NEAR(p.I_y_m4 / (h * w * w * w / 12.0), 1.0, kRoundOff);
+  EXPECT_GT(p.I_y_m4, p.I_x_m4);  // wider along x: stiffer about y
+  EXPECT_NEAR(p.J_m4 / (p.I_x_m4 + p.I_y_m4), 1.0, kRoundOff);
   EXPECT_FALSE(m.section.saint_venant_torsion);
-  EXPECT_NEAR(m.material.shear_modulus_Pa, 1e5 / 2.6, 1e-9);
-  EXPECT_EQ(m.material.density_kg_m3, 0.0);  // massless by default
+  EXPECT_NEAR(m.material.properties_at(0.0).shear_modulus_Pa, 1e5 / 2.6, 1e-9);
+  EXPECT_EQ(m.material.properties_at(0.0).density_kg_m3, 0.0);  // massless by default
   EXPECT_EQ(m.R_WB0, Eigen::Matrix3d::Identity());
   EXPECT_FALSE(m.tip_constraint.has_value());
   EXPECT_TRUE(m.tcas.empty());
@@ -238,7 +241,7 @@ double saint_venant(double w, double h) {
   doc["actuators"] = json::array();  // its offset would not fit every rectangle
   const RodModel m = parse_scenario(doc);
   EXPECT_TRUE(m.section.saint_venant_torsion);
-  return m.section.J_m4;
+  return m.section.properties_at(0.0).J_m4;
 }
 
 TEST(ParseScenario, SaintVenantTorsionMatchesTabulatedRectangleCoefficients) {
@@ -257,8 +260,8 @@ TEST(ParseScenario, SaintVenantTorsionMatchesTabulatedRectangleCoefficients) {
 TEST(ParseScenario, CircleSaintVenantEqualsPolarAndCustomIsTakenAsGiven) {
   json doc = full();
   doc["body"]["section"]["torsion"] = "saint-venant";
-  const RodModel c = parse_scenario(doc);
-  EXPECT_NEAR(c.section.J_m4 / (c.section.I_x_m4 + c.section.I_y_m4), 1.0, kRoundOff);
+  const SectionProperties c = parse_scenario(doc).section.properties_at(0.0);
+  EXPECT_NEAR(c.J_m4 / (c.I_x_m4 + c.I_y_m4), 1.0, kRoundOff);
 
   doc = minimal();
   doc["body"]["section"] = {{"shape", "custom"},
@@ -268,10 +271,11 @@ TEST(ParseScenario, CircleSaintVenantEqualsPolarAndCustomIsTakenAsGiven) {
                             {"J_m4", 4e-11}};
   const RodModel m = parse_scenario(doc);
   EXPECT_EQ(m.section.shape, Section::Shape::kCustom);
-  EXPECT_EQ(m.section.area_m2, 1e-5);
-  EXPECT_EQ(m.section.I_x_m4, 2e-11);
-  EXPECT_EQ(m.section.I_y_m4, 3e-11);
-  EXPECT_EQ(m.section.J_m4, 4e-11);
+  const SectionProperties p = m.section.properties_at(0.0);
+  EXPECT_EQ(p.area_m2, 1e-5);
+  EXPECT_EQ(p.I_x_m4, 2e-11);
+  EXPECT_EQ(p.I_y_m4, 3e-11);
+  EXPECT_EQ(p.J_m4, 4e-11);
 }
 
 TEST(ParseScenario, MaterialWithoutF12FormDefaultsToCastigliano) {

@@ -20,16 +20,11 @@ inline rod::RodModel circular_rod(double length_m, double diameter_m, double E_P
   m.name = "circular-rod";
   m.length_m = length_m;
   m.section.shape = rod::Section::Shape::kCircle;
-  m.section.width_m = diameter_m;
-  m.section.height_m = diameter_m;
-  m.section.area_m2 = units::kPi * diameter_m * diameter_m / 4.0;
-  m.section.I_x_m4 = units::kPi * std::pow(diameter_m, 4) / 64.0;
-  m.section.I_y_m4 = m.section.I_x_m4;
-  m.section.J_m4 = 2.0 * m.section.I_x_m4;
-  m.material.youngs_modulus_Pa = E_Pa;
+  m.section.width_profile = rod::Profile(diameter_m);
+  m.section.height_profile = rod::Profile(diameter_m);
+  m.material.youngs_modulus_profile = rod::Profile(E_Pa);
   m.material.poisson_ratio = poisson;
-  m.material.shear_modulus_Pa = E_Pa / (2.0 * (1.0 + poisson));
-  m.material.density_kg_m3 = density_kg_m3;
+  m.material.density_profile = rod::Profile(density_kg_m3);
   return m;
 }
 
@@ -38,27 +33,24 @@ inline rod::RodModel square_rod(double length_m, double side_m, double E_Pa, dou
                                 double density_kg_m3) {
   rod::RodModel m = circular_rod(length_m, side_m, E_Pa, poisson, density_kg_m3);
   m.name = "square-rod";
-  m.section.shape = rod::Section::Shape::kRectangle;
-  m.section.area_m2 = side_m * side_m;
-  m.section.I_x_m4 = std::pow(side_m, 4) / 12.0;
-  m.section.I_y_m4 = m.section.I_x_m4;
-  m.section.J_m4 = 2.0 * m.section.I_x_m4;
+  m.section.shape = rod::Section::Shape::kRectangle;  // width = height = side
   return m;
 }
 
-/// A rod along body e3 with given stiffnesses EA, GA, EI_x, EI_y, GJ (E = 1 Pa, custom section).
+/// A rod along body e3 with given stiffnesses EA, GA, EI_x, EI_y, GJ (E = 1 Pa, custom section;
+/// the Poisson ratio that makes G / E = GA / EA, so GA and GJ hold to round-off).
 inline rod::RodModel stiffness_rod(double length_m, double EA, double GA, double EI_x, double EI_y,
                                    double GJ) {
   rod::RodModel m;
   m.name = "stiffness-rod";
   m.length_m = length_m;
   m.section.shape = rod::Section::Shape::kCustom;
-  m.material.youngs_modulus_Pa = 1.0;
-  m.material.shear_modulus_Pa = GA / EA;
-  m.section.area_m2 = EA;
-  m.section.I_x_m4 = EI_x;
-  m.section.I_y_m4 = EI_y;
-  m.section.J_m4 = GJ / m.material.shear_modulus_Pa;
+  m.material.youngs_modulus_profile = rod::Profile(1.0);
+  m.material.poisson_ratio = EA / (2.0 * GA) - 1.0;  // G = E / (2 (1 + nu)) = GA / EA
+  m.section.area_profile = rod::Profile(EA);
+  m.section.I_x_profile = rod::Profile(EI_x);
+  m.section.I_y_profile = rod::Profile(EI_y);
+  m.section.J_profile = rod::Profile(GJ / m.material.shear_modulus(1.0));
   return m;
 }
 
@@ -137,7 +129,7 @@ inline const Eigen::Vector3d kStandingGravity_m_s2{0.0, 0.0, -9.81};
 inline rod::RodModel circular_manipulator(double temperature_K) {
   rod::RodModel m = circular_rod(0.040, 0.008, 37.8e3, 0.5, 1040.0);
   m.name = "circular-manipulator";
-  m.reference_curvature_B_1_m = kCircularInitialCurvature_1_m;
+  m.set_reference_curvature(kCircularInitialCurvature_1_m);
   m.gravity_W_m_s2 = kStandingGravity_m_s2;
   add_tca_string(m, "tca", manipulator_tca(), 0.003, 0.0, temperature_K);
   return m;
@@ -156,9 +148,8 @@ inline rod::RodModel square_manipulator(double temperature_K) {
 /// 4-tendon steel rod: E = 200 GPa, G = 80 GPa, r = 1 mm, L = 0.5 m, 8000 kg/m^3,
 /// gravity 9.81 along +x, tendons at 15.06 mm at 0/90/180/270 deg, tensions (15, 0, 0, 0) N.
 inline rod::RodModel steel_tendon_rod() {
-  rod::RodModel m = circular_rod(0.5, 0.002, 200e9, 0.25, 8000.0);
+  rod::RodModel m = circular_rod(0.5, 0.002, 200e9, 0.25, 8000.0);  // G = 200e9 / 2.5 = 80e9
   m.name = "steel-4-tendon";
-  m.material.shear_modulus_Pa = 80e9;
   m.gravity_W_m_s2 = {9.81, 0.0, 0.0};
   const double r = 0.01506;
   add_tension_string(m, "t0", r, 0.0, 15.0);

@@ -97,10 +97,11 @@ struct Beam {
 /// The beam of a uniform rod model's bending about body x (the rod model's K_se, K_bt, rho).
 inline Beam beam_of(const rod::RodModel& m, double m_tip) {
   Beam b;
-  b.EI = m.material.youngs_modulus_Pa * m.section.I_x_m4;
-  b.GA = m.material.shear_modulus_Pa * m.section.area_m2;
-  b.rhoA = m.material.density_kg_m3 * m.section.area_m2;
-  b.rhoI = m.material.density_kg_m3 * m.section.I_x_m4;
+  const rod::SectionStiffness K = m.stiffness_at(0.0);
+  b.EI = K.bending_torsion.x();
+  b.GA = K.shear_extension.x();
+  b.rhoA = m.mass_per_length_kg_m(0.0);
+  b.rhoI = m.material.density_profile.value(0.0) * m.section.properties_at(0.0).I_x_m4;
   b.L = m.length_m;
   b.m_tip = m_tip;
   return b;
@@ -423,11 +424,11 @@ class DissipationMeter {
  public:
   DissipationMeter(const rod::RodModel& m, const cosserat::DynamicsOptions& o) : o_(o) {
     const Eigen::Vector3d kse = m.shear_extension_stiffness(), kbt = m.bending_torsion_stiffness();
-    const double eta = o.viscosity_Pa_s.value_or(m.material.viscosity_Pa_s), eta_s = eta / (2.0 * (1.0 + m.material.poisson_ratio));
-    const auto& sec = m.section;
+    const double eta = o.viscosity_Pa_s.value_or(m.material.viscosity_profile.value(0.0));
+    const rod::SectionStiffness B =
+        rod::section_stiffness(m.section.properties_at(0.0), eta, m.material.shear_modulus(eta));
     K_ << kse, kbt;
-    B_ << eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2, eta * sec.I_x_m4,
-        eta * sec.I_y_m4, eta_s * sec.J_m4;
+    B_ << B.shear_extension, B.bending_torsion;
     L_ = m.length_m;
     const double a = o.alpha, dt = o.dt_s;
     c0_ = (1.5 + a) / (dt * (1.0 + a));
@@ -537,16 +538,11 @@ inline rod::RodModel steel_rod(double r_m, double length_m) {
   m.length_m = length_m;
   const double d = 2.0 * r_m;
   m.section.shape = rod::Section::Shape::kCircle;
-  m.section.width_m = d;
-  m.section.height_m = d;
-  m.section.area_m2 = kPi * d * d / 4.0;
-  m.section.I_x_m4 = kPi * std::pow(d, 4) / 64.0;
-  m.section.I_y_m4 = m.section.I_x_m4;
-  m.section.J_m4 = 2.0 * m.section.I_x_m4;
-  m.material.youngs_modulus_Pa = 200e9;
-  m.material.poisson_ratio = 0.25;
-  m.material.shear_modulus_Pa = 200e9 / 2.5;
-  m.material.density_kg_m3 = 8000.0;
+  m.section.width_profile = rod::Profile(d);
+  m.section.height_profile = rod::Profile(d);
+  m.material.youngs_modulus_profile = rod::Profile(200e9);
+  m.material.poisson_ratio = 0.25;  // G = 200e9 / 2.5
+  m.material.density_profile = rod::Profile(8000.0);
   return m;
 }
 

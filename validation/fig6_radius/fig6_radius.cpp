@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
     for (const auto& name : manipulators) {
       const tcasim::rod::RodModel base =
           tcasim::rod::read_scenario(scenario_dir + "/" + name + ".json");
-      reference_curvature_1_m[name] = base.reference_curvature_B_1_m.norm();
+      reference_curvature_1_m[name] = base.reference_curvature_at(0.0).norm();
       for (const auto& material : materials) {
         const tcasim::rod::RodModel model = with_material(base, material);
         tcasim::cosserat::Options options;

@@ -30,8 +30,7 @@ inline double viscosity_at(const rod::RodModel& model, double s_m,
                            const std::optional<double>& override_Pa_s,
                            rod::Side side = rod::Side::kRight) {
   if (override_Pa_s) return *override_Pa_s;
-  const rod::Profile& p = model.material.viscosity_profile;
-  return p.is_constant() ? model.material.viscosity_Pa_s : p.value(s_m, side);
+  return model.material.viscosity_profile.value(s_m, side);
 }
 
 /// Whether section_at() is the same at every s (then the solver evaluates it once).
@@ -43,31 +42,22 @@ inline bool section_is_uniform(const rod::RodModel& model,
 
 /// The properties at arc length s [m] with Kelvin-Voigt viscosity eta [Pa s]
 /// (eta_s = eta / (2 (1 + poisson_ratio)), as G from E); at a jump of a profile the limit
-/// from `side`. A uniform body takes the model's constant section and material.
+/// from `side`.
 inline SectionAt section_at(const rod::RodModel& model, double s_m, double viscosity_Pa_s,
                             rod::Side side = rod::Side::kRight) {
   SectionAt p;
   const double eta = viscosity_Pa_s;
-  const double eta_s = eta / (2.0 * (1.0 + model.material.poisson_ratio));
-  if (model.uniform_body()) {
-    p.K_se = model.shear_extension_stiffness();
-    p.K_bt = model.bending_torsion_stiffness();
-    const rod::Section& sec = model.section;
-    p.B_se = Eigen::Vector3d(eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2);
-    p.B_bt = Eigen::Vector3d(eta * sec.I_x_m4, eta * sec.I_y_m4, eta_s * sec.J_m4);
-    const double rho = model.material.density_kg_m3;
-    p.rho_A = rho * sec.area_m2;
-    p.rho_J = Eigen::Vector3d(rho * sec.I_x_m4, rho * sec.I_y_m4, rho * (sec.I_x_m4 + sec.I_y_m4));
-    p.omega_star = model.reference_curvature_B_1_m;
-    return p;
-  }
   const rod::SectionProperties sec = model.section.properties_at(s_m, side);
-  p.K_se = model.shear_extension_stiffness(s_m, side);
-  p.K_bt = model.bending_torsion_stiffness(s_m, side);
-  p.B_se = Eigen::Vector3d(eta_s * sec.area_m2, eta_s * sec.area_m2, eta * sec.area_m2);
-  p.B_bt = Eigen::Vector3d(eta * sec.I_x_m4, eta * sec.I_y_m4, eta_s * sec.J_m4);
-  const rod::Profile& rho_p = model.material.density_profile;
-  const double rho = rho_p.is_constant() ? model.material.density_kg_m3 : rho_p.value(s_m, side);
+  const rod::MaterialProperties mat = model.material.properties_at(s_m, side);
+  const rod::SectionStiffness K =
+      rod::section_stiffness(sec, mat.youngs_modulus_Pa, mat.shear_modulus_Pa);
+  const rod::SectionStiffness B =
+      rod::section_stiffness(sec, eta, model.material.shear_modulus(eta));
+  p.K_se = K.shear_extension;
+  p.K_bt = K.bending_torsion;
+  p.B_se = B.shear_extension;
+  p.B_bt = B.bending_torsion;
+  const double rho = mat.density_kg_m3;
   p.rho_A = rho * sec.area_m2;
   p.rho_J = Eigen::Vector3d(rho * sec.I_x_m4, rho * sec.I_y_m4, rho * (sec.I_x_m4 + sec.I_y_m4));
   p.omega_star = model.reference_curvature_at(s_m, side);

@@ -60,6 +60,8 @@ struct RodProblem {
   /// (L for a uniform body).
   double rho_A_ref = 0.0;
   double weight_length = 0.0;
+  /// psi and A at s = 0, evaluated once: a uniform body's f_ext_W is lambda psi A g.
+  double density_base = 0.0, area_base = 0.0;
   // Strings anchored inside the body (rod::Actuator::span_m; cosserat/string_jumps.cpp): the
   // anchors are knots too (a uniform body with anchors has knots 0, L/2, L and the anchors),
   // a jump there moves the string's share of the section wrench to the rod, and
