@@ -85,7 +85,7 @@ void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions&
   s.output_dt_s = static_cast<double>(f.output_every) * f.dt_s;
   s.release_tip_load = f.release_tip_load;
   // Checked above: a given --steps is >= 1 (DynamicSettings' 0 is its own "recommended").
-  s.steps = f.steps ? static_cast<int>(*f.steps) : 0;
+  if (f.steps) s.steps = static_cast<int>(*f.steps);
   s.alpha = f.alpha;
   s.rho_inf = f.rho_inf;
   s.max_iterations = static_cast<int>(f.max_iterations);

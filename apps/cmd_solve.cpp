@@ -71,7 +71,6 @@ void add_fe_flags(CLI::App* cmd, study::FeChoice& f) {
   cmd->add_option("--linear-solver", f.linear_solver, "fe: klu (default), umfpack or sparselu");
 }
 
-
 }  // namespace
 
 void add_solve_command(CLI::App& app) {
@@ -99,8 +98,8 @@ void add_solve_command(CLI::App& app) {
     study::check_method(flags->method, OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(flags->scenario);
     const rod::Result result = method::solve(
-        model, study::static_options(flags->method, flags->integrator, flags->fe,
-                                     OptionNames::kFlags));
+        model,
+        study::static_options(flags->method, flags->integrator, flags->fe, OptionNames::kFlags));
     rod::write_result(result, flags->out);
     if (!flags->vtk.empty()) rod::write_vtp(model, result, flags->vtk);
     if (!flags->shape_csv.empty()) rod::write_shape_csv(model, result, flags->shape_csv);

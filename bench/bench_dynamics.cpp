@@ -127,7 +127,11 @@ void BM_ReleasedSteelCantileverEuler(benchmark::State& state) {
   set_counters(state, w, kTimeSteps, kDt);
   state.counters["spatial_error_m"] = spatial_error(n, DynamicsOptions::SpatialScheme::kEuler);
 }
-BENCHMARK(BM_ReleasedSteelCantileverEuler)->Arg(40)->Arg(80)->Arg(160)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReleasedSteelCantileverEuler)
+    ->Arg(40)
+    ->Arg(80)
+    ->Arg(160)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_SteelCantilever25s(benchmark::State& state) {
   constexpr int kSteps25s = 12500;

@@ -45,10 +45,10 @@ int steps_for(bool tapered) {
       cosserat::ShootingSolver solver(m, rk4(n));
       cosserat::Solution sol;
       const cosserat::Summary s = solver.solve(rod::Loads::from_model(m), sol);
-      std::printf("%s: %d RK4 steps, tip error %.2e m (reference 2048 steps); cold solve: %d "
-                  "Newton iterations, %d IVPs, %d continuation steps\n",
-                  tapered ? "tapered" : "uniform", n, err, s.iterations, s.ivp_count,
-                  s.continuation_steps);
+      std::printf(
+          "%s: %d RK4 steps, tip error %.2e m (reference 2048 steps); cold solve: %d "
+          "Newton iterations, %d IVPs, %d continuation steps\n",
+          tapered ? "tapered" : "uniform", n, err, s.iterations, s.ivp_count, s.continuation_steps);
       return n;
     }
   }

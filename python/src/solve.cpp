@@ -20,10 +20,10 @@
 #include "common/units.hpp"
 #include "cosserat/shooting.hpp"
 #include "json_convert.hpp"
+#include "method/method.hpp"
 #include "rod/loads.hpp"
 #include "rod/result.hpp"
 #include "rod/vtk.hpp"
-#include "method/method.hpp"
 #include "study/options.hpp"
 #include "study/sweep.hpp"
 

@@ -256,8 +256,8 @@ class Discretization {
   double h_m_;
   std::vector<double> element_s0_m_, element_h_m_;  // per element: first node's s, length
   Quadrature quad_;
-  std::vector<int> tca_actuators_;   // actuator index of each TCA unknown
-  std::vector<int> tca_unknown_;     // per actuator: its TCA unknown or -1
+  std::vector<int> tca_actuators_;                  // actuator index of each TCA unknown
+  std::vector<int> tca_unknown_;                    // per actuator: its TCA unknown or -1
   std::vector<double> node_mass_kg_;                // per node int N_a psi A ds (element rule)
   std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position

@@ -132,7 +132,7 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   const int nodes = node_count();
   node_mass_kg_.assign(static_cast<std::size_t>(nodes), 0.0);
   const bool uniform = model.uniform_body();
-  const double uniform_psi_A = model.material.density_kg_m3 * model.section.area_m2;
+  const double uniform_psi_A = model.mass_per_length_kg_m(0.0);
   for (int e = 0; e < elements_; ++e) {
     for (std::size_t g = 0; g < quad_.xi.size(); ++g) {
       const double xi = quad_.xi[g];
@@ -334,7 +334,8 @@ double Discretization::residual_scale(const State& state, const LoadCase& loads,
   return scale;
 }
 
-Discretization::Floor Discretization::round_off_floor(double added_se_N, double added_bt_Nm2) const {
+Discretization::Floor Discretization::round_off_floor(double added_se_N,
+                                                      double added_bt_Nm2) const {
   // Strains are differences of nodal values divided by the node spacing L/(nodes - 1), so
   // they carry round-off ~eps (nodes - 1); times the stiffness and a factor 10 for the
   // sums, that is the level below which the assembled residual cannot be resolved
@@ -354,8 +355,8 @@ Discretization::Floor Discretization::round_off_floor(double added_se_N, double 
     }
   }
   const double force = eps_n * (K_se + added_se_N);
-  const double moment =
-      eps_n * (K_bt + added_bt_Nm2) / model_->length_m + force * model_->length_m / (node_count() - 1);
+  const double moment = eps_n * (K_bt + added_bt_Nm2) / model_->length_m +
+                        force * model_->length_m / (node_count() - 1);
   return {force, moment};
 }
 

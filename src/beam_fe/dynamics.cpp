@@ -88,7 +88,7 @@ struct BeamDynamics::Impl {
   Options fe;
   std::unique_ptr<Discretization> disc_static;
   int nodes = 0, free_dofs = 0, n_act = 0;
-  int n_x = 0;                  // unknowns: free_dofs, then one tension per TCA
+  int n_x = 0;                    // unknowns: free_dofs, then one tension per TCA
   std::vector<int> tca_actuator;  // actuator of each TCA unknown
   rod::ElectricThermalStates thermal;
   std::vector<std::vector<double>> temperatures_conv;  // per actuator, of the last converged step
@@ -126,8 +126,8 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
     throw DomainError("FE dynamics: a tip_constraint is not supported in dynamics yet");
   }
   if (o.viscosity_Pa_s) {
-    require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0,
-            "dynamics.viscosity_Pa_s", *o.viscosity_Pa_s, "must be >= 0");
+    require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
+            *o.viscosity_Pa_s, "must be >= 0");
   }
   ap = alpha_parameters(o.rho_inf);
   h = o.dt_s;
@@ -185,8 +185,8 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
     }
   }
   const double eta_max = o.viscosity_Pa_s ? *o.viscosity_Pa_s
-                         : eta_varies      ? eta_profile.max_value()
-                                           : eta_profile.value(0.0);
+                         : eta_varies     ? eta_profile.max_value()
+                                          : eta_profile.value(0.0);
   if (eta_max > 0.0) {
     kv = std::make_unique<damping::StrainRateHistory>(*disc_static, m, o.viscosity_Pa_s, ap, h);
     // The viscous stresses c_e B eps(n+1) - c_e B eps(n) are formed from the strains as the

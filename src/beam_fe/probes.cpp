@@ -1,12 +1,13 @@
 // Probes of the FE solution (docs/scenario-format.md "Probes and frames"): the element
 // interpolation evaluated at the probe's s, exact for the discrete solution.
+#include "rod/probes.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 
 #include "beam_fe/beam_fe.hpp"
 #include "beam_fe/internal/quadrature.hpp"
 #include "common/so3.hpp"
-#include "rod/probes.hpp"
 
 namespace tcasim::beam_fe {
 

@@ -15,7 +15,7 @@
 #include "common/data_dir.hpp"
 #include "common/error.hpp"
 
-#if !defined(TCASIM_UMFPACK_PLUGIN_FILE) || !defined(TCASIM_BUILD_PLUGIN_DIR) ||      \
+#if !defined(TCASIM_UMFPACK_PLUGIN_FILE) || !defined(TCASIM_BUILD_PLUGIN_DIR) ||    \
     !defined(TCASIM_INSTALL_PLUGIN_DIR) || !defined(TCASIM_BINDIR_TO_PLUGIN_DIR) || \
     !defined(TCASIM_LIBDIR_TO_PLUGIN_DIR)
 #error "the plugin folders must be defined by the build (src/beam_fe/CMakeLists.txt)"
@@ -35,8 +35,8 @@ const tcasim_umfpack_plugin* open_plugin(const std::string& path, std::string& w
     why = error != nullptr ? error : path + ": dlopen failed";
     return nullptr;
   }
-  const auto factory = reinterpret_cast<tcasim_umfpack_plugin_factory>(
-      dlsym(handle, TCASIM_UMFPACK_PLUGIN_FACTORY));
+  const auto factory =
+      reinterpret_cast<tcasim_umfpack_plugin_factory>(dlsym(handle, TCASIM_UMFPACK_PLUGIN_FACTORY));
   const tcasim_umfpack_plugin* const plugin = factory != nullptr ? factory() : nullptr;
   if (plugin == nullptr) {
     why = path + ": no " TCASIM_UMFPACK_PLUGIN_FACTORY " in it";

@@ -44,8 +44,8 @@ int solve(void* lu, int n, const double* b, double* x) noexcept {
   }
 }
 
-constexpr tcasim_umfpack_plugin kPlugin = {TCASIM_UMFPACK_PLUGIN_ABI, &create, &destroy,
-                                           &factorize, &solve};
+constexpr tcasim_umfpack_plugin kPlugin = {TCASIM_UMFPACK_PLUGIN_ABI, &create, &destroy, &factorize,
+                                           &solve};
 
 }  // namespace
 

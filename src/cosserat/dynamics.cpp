@@ -478,8 +478,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   }
   // Warm start: the unknowns extrapolated from the last steps, by the polynomial whose order
   // would have predicted the last step best (quadratic on the first steps).
-  const int order =
-      std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
+  const int order = std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
   Eigen::VectorXd& zz = d.z_start_;
   d.predict(order, zz);
   DynamicsSummary sum = d.solve(zz);

@@ -45,8 +45,8 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
       if (!lu_valid) {
         sum.status = DynamicsSummary::Status::kSingularJacobian;
         sum.message = dense ? "the dense LU factorization of the multiple-shooting Jacobian is "
-                                    "singular (a pivot below 1e-14 of the largest)"
-                                  : "SparseLU could not factorize the multiple-shooting Jacobian";
+                              "singular (a pivot below 1e-14 of the largest)"
+                            : "SparseLU could not factorize the multiple-shooting Jacobian";
         return sum;
       }
     }
@@ -123,8 +123,7 @@ DynamicsSummary RodDynamics::Impl::solve(Eigen::VectorXd& zz) {
   }
 }
 
-bool RodDynamics::newton_system(const Eigen::VectorXd& u, Eigen::VectorXd& r,
-                                Eigen::MatrixXd* J) {
+bool RodDynamics::newton_system(const Eigen::VectorXd& u, Eigen::VectorXd& r, Eigen::MatrixXd* J) {
   Impl& d = *impl_;
   if (u.size() != d.unknowns()) return false;
   const bool ok = d.evaluate(u.cwiseProduct(d.unknown_scale()), r, J != nullptr);

@@ -76,8 +76,8 @@ bool RodDynamics::Impl::rhs(double /*s: the slot's, whose routing is slot_r()*/,
       e -= dx.head<3>();
       om -= dx.tail<3>();
       if (!dx.allFinite()) return false;
-      const double step = dx.head<3>().lpNorm<Eigen::Infinity>() +
-                          L * dx.tail<3>().lpNorm<Eigen::Infinity>();
+      const double step =
+          dx.head<3>().lpNorm<Eigen::Infinity>() + L * dx.tail<3>().lpNorm<Eigen::Infinity>();
       const double size = e.lpNorm<Eigen::Infinity>() + L * om.lpNorm<Eigen::Infinity>() + 1e-300;
       // Newton converges quadratically here: after a correction of relative size d the next
       // one is of order d^2, so without a Jacobian to form, a correction below
@@ -184,8 +184,8 @@ void StageJacobian::apply(const Eigen::MatrixXd& dY, Eigen::MatrixXd& dK) const 
     // The direct part (xi fixed).
     const Eigen::Map<const Mat3> dR(y + kR);
     const Eigen::Map<const Vec3> dN(y + kN), dM(y + kM), dQ(y + kQ), dW(y + kW);
-    Eigen::Map<Vec3>(k + kP) += dR * nu;                        // d(R nu)
-    Eigen::Map<Mat3>(k + kR) += dR * Om;                        // d(R hat(omega))
+    Eigen::Map<Vec3>(k + kP) += dR * nu;  // d(R nu)
+    Eigen::Map<Mat3>(k + kR) += dR * Om;  // d(R hat(omega))
     Eigen::Map<Vec3>(k + kN) += B_NQ * dQ + B_NW * dW - Om * dN - dR.transpose() * f_W;
     Eigen::Map<Vec3>(k + kM) += B_MW * dW - Om * dM - hat_nu * dN;
     Eigen::Map<Vec3>(k + kQ) -= Om * dQ + hat_nu * dW;

@@ -89,8 +89,8 @@ bool IntegrationLevel::integrate(const ode::RhsFunction& f, double L, Eigen::Vec
   return is.status == ode::IntegrationSummary::Status::kSuccess && y.allFinite();
 }
 
-bool IntegrationLevel::integrate_between(const ode::RhsFunction& f, double L, double s0,
-                                         double s1, Eigen::VectorXd& y) {
+bool IntegrationLevel::integrate_between(const ode::RhsFunction& f, double L, double s0, double s1,
+                                         Eigen::VectorXd& y) {
   // The step length h of the level where [s0, s1] lies: steps x (piece length) / L per piece.
   double h = L / std::max(1, options_.steps);
   if (pieces_) {

@@ -12,8 +12,8 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "common/units.hpp"
-#include "cosserat/inverse.hpp"
 #include "cosserat/internal/inverse_internal.hpp"
+#include "cosserat/inverse.hpp"
 
 namespace tcasim::cosserat {
 

@@ -53,8 +53,7 @@ RodProblem::RodProblem(const rod::RodModel& m, const LayoutDims& d)
     K_omega_tip = model.bending_torsion_stiffness(L, rod::Side::kLeft);
     omega_star_tip = model.reference_curvature_at(L, rod::Side::kLeft);
     for (const rod::Profile& c : model.reference_curvature_profile) {
-      omega_star_varies =
-          omega_star_varies || (!c.is_constant() && c.min_value() != c.max_value());
+      omega_star_varies = omega_star_varies || (!c.is_constant() && c.min_value() != c.max_value());
     }
     knots = model.breakpoints();
     knots.push_back(0.0);

@@ -288,8 +288,7 @@ struct SectionWrench {
 /// `side`: the side of the knot s the section lies on (the string tangents of a kinked
 /// spline routing differ: docs/conventions.md "Spline routings").
 void section_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece,
-                    const RodRhs::Local& k, const Vec3& e, const Vec3& omega,
-                    SectionWrench& out) {
+                    const RodRhs::Local& k, const Vec3& e, const Vec3& omega, SectionWrench& out) {
   out.W.head<3>() = k.Kn.cwiseProduct(e);
   out.W.tail<3>() = k.Kw.cwiseProduct(omega - k.ws);
   out.M.setZero();

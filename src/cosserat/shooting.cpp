@@ -371,8 +371,8 @@ bool ShootingSolver::Impl::probe_results(rod::Result& res,
       continue;
     }
     // From the last sample before s (in s's piece: the knots are samples) on to s.
-    const auto k = static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), probe.s_m) -
-                                            s.begin()) - 1;
+    const auto k =
+        static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), probe.s_m) - s.begin()) - 1;
     yp = sample_states[k];
     if (!output_level->integrate_between(rhs, L, s[k], probe.s_m, yp)) return false;
     layout->embed_state(yp, y3);
@@ -423,8 +423,7 @@ rod::Result ShootingSolver::make_result(const rod::Loads& actuation, const Solut
   // A solution in the plane is sampled by the planar IVP: the same discretization (the
   // samples agree with the 3-D IVP's to round-off, docs/conventions.md "Planar reduction")
   // at about a third of the cost (the 3-D sampling was more than half of a warm sweep step).
-  Impl& sampler =
-      reduced_ && in_plane(*reduced_->layout, actuation, solution) ? *reduced_ : *impl_;
+  Impl& sampler = reduced_ && in_plane(*reduced_->layout, actuation, solution) ? *reduced_ : *impl_;
   rod::Result res = sampler.make_result(actuation, solution, summary);
   res.status = to_string(summary.status);
   res.residual = summary.equilibrium_residual;

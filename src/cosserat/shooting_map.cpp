@@ -47,7 +47,7 @@ bool ShootingSolver::Impl::residual_and_jacobian(const rod::Loads& act, double l
 }
 
 bool ShootingSolver::Impl::memo_answers(const Eigen::VectorXd& x,
-                                       const IntegrationLevel* on) const {
+                                        const IntegrationLevel* on) const {
   return memo_valid && acc_level == (on != nullptr ? on : level) && x_acc.size() == x.size() &&
          x_acc == x && acc_cT == cT && acc_f_ext == f_ext_W &&
          acc_omega_star_fraction == omega_star_fraction;

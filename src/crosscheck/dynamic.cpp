@@ -68,15 +68,13 @@ method::DynamicOptions dynamic_options(const rod::RodModel& model, DynamicMethod
   o.alpha = s.alpha;
   o.tolerance = s.shooting_tolerance;
   o.max_iterations = s.max_iterations;
-  o.steps = s.steps > 0 ? s.steps : cosserat::recommended_steps(model, o);
+  o.steps = s.steps ? *s.steps : cosserat::recommended_steps(model, o);
   return o;
 }
 
 }  // namespace
 
-const char* to_string(DynamicMethod m) {
-  return m == DynamicMethod::kShooting ? "cosserat" : "fe";
-}
+const char* to_string(DynamicMethod m) { return m == DynamicMethod::kShooting ? "cosserat" : "fe"; }
 
 rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release_tip_load) {
   return method::loads_at(model, t_s, release_tip_load);
@@ -184,9 +182,8 @@ std::string dynamic_csv(const DynamicRun& reference, const std::vector<DynamicRu
   std::vector<std::vector<long long>> at(others.size(),
                                          std::vector<long long>(reference.t_s.size(), -1));
   for (std::size_t k = 0; k < others.size(); ++k) {
-    for_shared_times(reference, others[k], [&](std::size_t i, std::size_t j) {
-      at[k][i] = static_cast<long long>(j);
-    });
+    for_shared_times(reference, others[k],
+                     [&](std::size_t i, std::size_t j) { at[k][i] = static_cast<long long>(j); });
   }
   for (std::size_t i = 0; i < reference.t_s.size(); ++i) {
     const Eigen::Vector3d& p = reference.tip_W_m[i];

@@ -13,6 +13,7 @@
 /// order 2), a trajectory whose time error is of higher order; the difference of two
 /// extrapolated trajectories is then the spatial and model difference.
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,13 +36,14 @@ struct DynamicSettings {
   /// The scenario's tip load acts at t = 0 only (released at t = 0+: a released cantilever).
   bool release_tip_load = false;
   // Shooting (cosserat::DynamicsOptions).
-  int steps = 0;         ///< RK4 steps along s; 0: cosserat::recommended_steps for dt
-  double alpha = -0.2;   ///< BDF-alpha parameter in [-0.5, 0]
+  /// RK4 steps along s; unset: cosserat::recommended_steps for dt.
+  std::optional<int> steps;
+  double alpha = -0.2;                ///< BDF-alpha parameter in [-0.5, 0]
   double shooting_tolerance = 1e-12;  ///< scaled residual (below the default 1e-10)
   // FE (beam_fe::DynamicsOptions).
   int elements = 32;
   int order = 2;
-  double rho_inf = 0.9;  ///< generalized-alpha spectral radius at infinite frequency
+  double rho_inf = 0.9;         ///< generalized-alpha spectral radius at infinite frequency
   double fe_tolerance = 1e-12;  ///< scaled residual (below the default 1e-10)
   int max_iterations = 30;      ///< Newton iterations per step (both methods)
 };
@@ -53,14 +55,14 @@ rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release
 /// One method's trajectory.
 struct DynamicRun {
   DynamicMethod method = DynamicMethod::kShooting;
-  std::vector<double> t_s;                ///< output times [s], from 0
-  std::vector<Eigen::Vector3d> tip_W_m;   ///< tip position at t_s [m]
-  std::vector<double> kinetic_J;          ///< kinetic energy at t_s [J]
-  std::vector<double> potential_J;        ///< potential energy of the loads at t_s [J]
-  bool ok = false;       ///< the static state and every step converged
-  std::string message;   ///< why it stopped (empty when ok)
-  int grid_steps = 0;    ///< shooting: RK4 steps along s used; FE: elements
-  double wall_s = 0.0;   ///< wall time of the run [s]
+  std::vector<double> t_s;               ///< output times [s], from 0
+  std::vector<Eigen::Vector3d> tip_W_m;  ///< tip position at t_s [m]
+  std::vector<double> kinetic_J;         ///< kinetic energy at t_s [J]
+  std::vector<double> potential_J;       ///< potential energy of the loads at t_s [J]
+  bool ok = false;                       ///< the static state and every step converged
+  std::string message;                   ///< why it stopped (empty when ok)
+  int grid_steps = 0;                    ///< shooting: RK4 steps along s used; FE: elements
+  double wall_s = 0.0;                   ///< wall time of the run [s]
 };
 
 /// Runs one method (DomainError when the method does not support the model, InputError for
@@ -74,9 +76,9 @@ std::string fe_dynamics_unsupported(const rod::RodModel& model);
 
 /// max_t |a(t) - b(t)| over the output times both runs share (within 1e-9 of the duration).
 struct TrajectoryDifference {
-  double max_m = 0.0;       ///< largest tip distance [m] (NaN when no time is shared)
-  double at_t_s = 0.0;      ///< where it occurs [s]
-  std::size_t shared = 0;   ///< number of shared output times
+  double max_m = 0.0;      ///< largest tip distance [m] (NaN when no time is shared)
+  double at_t_s = 0.0;     ///< where it occurs [s]
+  std::size_t shared = 0;  ///< number of shared output times
 };
 TrajectoryDifference trajectory_difference(const DynamicRun& a, const DynamicRun& b);
 

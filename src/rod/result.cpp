@@ -51,7 +51,8 @@ class FiniteWriter {
     json rows = json::array();
     for (int r = 0; r < 3; ++r) {
       json row = json::array();
-      for (int c = 0; c < 3; ++c) row.push_back(number(m(r, c), fmt::format("{}[{}][{}]", field, r, c)));
+      for (int c = 0; c < 3; ++c)
+        row.push_back(number(m(r, c), fmt::format("{}[{}][{}]", field, r, c)));
       rows.push_back(row);
     }
     return rows;
@@ -156,10 +157,9 @@ nlohmann::json to_json(const Result& result) {
   if (!result.probes.empty()) {
     json probes = json::array();
     for (std::size_t i = 0; i < result.probes.size(); ++i) {
-      probes.push_back(
-          {{"name", result.probes[i].name},
-           {"position_m",
-            w.vector(result.probes[i].position_W_m, fmt::format("probes[{}].position_m", i))}});
+      probes.push_back({{"name", result.probes[i].name},
+                        {"position_m", w.vector(result.probes[i].position_W_m,
+                                                fmt::format("probes[{}].position_m", i))}});
     }
     j["probes"] = probes;
   }

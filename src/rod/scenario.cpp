@@ -17,9 +17,9 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "rod/internal/scenario_reading.hpp"
 #include "rod/json_file.hpp"
 #include "rod/reference_path.hpp"
-#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "rod/profile.hpp"
 #include "rod/internal/scenario_reading.hpp"
+#include "rod/profile.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

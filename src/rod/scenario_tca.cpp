@@ -11,9 +11,9 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "rod/internal/scenario_reading.hpp"
 #include "rod/reference_path.hpp"
 #include "rod/scenario.hpp"
-#include "rod/internal/scenario_reading.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

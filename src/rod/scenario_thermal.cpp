@@ -14,8 +14,8 @@
 #include "common/data_dir.hpp"
 #include "common/error.hpp"
 #include "common/units.hpp"
-#include "rod/json_file.hpp"
 #include "rod/internal/scenario_reading.hpp"
+#include "rod/json_file.hpp"
 
 namespace tcasim::rod::scenario_detail {
 namespace {

@@ -32,9 +32,8 @@ void Routing::build_spline() {
 
 std::size_t Routing::spline_piece(double s_m, Side side) const {
   // kRight: the piece [s_j, s_{j+1}) with s_j <= s; kLeft: (s_j, s_{j+1}] with s <= s_{j+1}.
-  const auto it = side == Side::kRight
-                      ? std::upper_bound(knot_s_m.begin(), knot_s_m.end(), s_m)
-                      : std::lower_bound(knot_s_m.begin(), knot_s_m.end(), s_m);
+  const auto it = side == Side::kRight ? std::upper_bound(knot_s_m.begin(), knot_s_m.end(), s_m)
+                                       : std::lower_bound(knot_s_m.begin(), knot_s_m.end(), s_m);
   const long j = static_cast<long>(it - knot_s_m.begin()) - 1;
   return static_cast<std::size_t>(std::clamp(j, 0L, static_cast<long>(knot_s_m.size()) - 2));
 }

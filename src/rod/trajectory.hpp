@@ -16,11 +16,11 @@ namespace tcasim::rod {
 
 /// The state of one output time.
 struct TrajectoryRow {
-  double t_s = 0.0;                  ///< time [s]
+  double t_s = 0.0;                                   ///< time [s]
   Eigen::Vector3d tip_W_m = Eigen::Vector3d::Zero();  ///< tip position [m], world frame
-  double kinetic_energy_J = 0.0;     ///< kinetic energy [J]
-  std::vector<double> tensions_N;    ///< per actuator: tension of one string [N]
-  std::vector<double> elongations_m; ///< per actuator: its elongation [m]
+  double kinetic_energy_J = 0.0;                      ///< kinetic energy [J]
+  std::vector<double> tensions_N;                     ///< per actuator: tension of one string [N]
+  std::vector<double> elongations_m;                  ///< per actuator: its elongation [m]
   /// Per actuator its temperatures [K] (one per segment; empty: a tension drive). May be
   /// empty altogether (no actuator has any).
   std::vector<std::vector<double>> temperatures_K;
@@ -60,8 +60,8 @@ void write_trajectory_row(std::ostream& os, const TrajectoryRow& row);
 
 /// How a run of the time loop ended.
 struct TrajectoryOutcome {
-  bool ok = false;             ///< the static state and every step converged
-  long long steps_done = 0;    ///< converged time steps
+  bool ok = false;                   ///< the static state and every step converged
+  long long steps_done = 0;          ///< converged time steps
   std::string status = "converged";  ///< the failing solve's status (to_string of it)
   /// Why it stopped early (empty when ok): "static initial state did not converge (STATUS):
   /// ..." or "time step to t = T s failed (STATUS): ..."; the CSV's last line is "# " + it.

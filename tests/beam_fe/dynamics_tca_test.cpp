@@ -83,7 +83,8 @@ TEST(BeamDynamicsTca, StepJacobianWithTcaRowsMatchesFiniteDifferences) {
     o.tip_mass_kg = 2e-4;
     BeamDynamics d(m, o);
     ASSERT_TRUE(d.initialize(rod::Loads::from_model(m)).converged());
-    for (int k = 1; k <= 4; ++k) ASSERT_TRUE(d.step(rod::Loads::at_time(m, k * o.dt_s)).converged());
+    for (int k = 1; k <= 4; ++k)
+      ASSERT_TRUE(d.step(rod::Loads::at_time(m, k * o.dt_s)).converged());
     EXPECT_GT(d.segment_temperatures_K()[0][0], units::degC_to_K(26.0));  // heating
     EXPECT_LT(jacobian_error(d, rod::Loads::at_time(m, 5 * o.dt_s)), 1e-6);
   }
@@ -120,7 +121,8 @@ double rest_drift(BeamDynamics& d, const rod::Loads& loads, int steps) {
 // held closed by a tendon (coil contact), with and without damping.
 TEST(BeamDynamicsTca, StaticStatesWithTcasAtConstantTemperatureStayAtRest) {
   rod::RodModel strut = test_support::strut_rod(0.5, units::degC_to_K(25.0));
-  strut.material.density_profile = rod::Profile(1040.0);  // the square manipulator's body, with mass
+  strut.material.density_profile =
+      rod::Profile(1040.0);  // the square manipulator's body, with mass
   const std::vector<std::pair<std::string, rod::RodModel>> cases = {
       {"circular manipulator at 90 degC", scenario_model(scenario_json("circular-manipulator"))},
       {"segmented TCA", scenario_model(scenario_json("segmented-tca"))},

@@ -85,8 +85,7 @@ TEST(UmfpackPlugin, MissingThenBrokenThenFoundPluginAndOpenBlasThreadsEnded) {
   std::ofstream(broken.path / TCASIM_UMFPACK_PLUGIN_FILE) << "not a shared library\n";
   ASSERT_EQ(setenv("TCASIM_PLUGIN_DIR", broken.path.c_str(), 1), 0);
   const InputError bad = umfpack_error();
-  EXPECT_NE(bad.rule().find((broken.path / TCASIM_UMFPACK_PLUGIN_FILE).string()),
-            std::string::npos)
+  EXPECT_NE(bad.rule().find((broken.path / TCASIM_UMFPACK_PLUGIN_FILE).string()), std::string::npos)
       << bad.what();
 
   // 3. The default search (a failure is not remembered) finds the build tree's plugin; the

@@ -60,27 +60,27 @@ rod::RodModel steel_with(const std::string& kind) {
                       {"drive", tension(0.0)}});
     }
   } else if (kind == "linear") {
-    acts.push_back({{"name", "disks"},
-                    {"routing",
-                     {{"type", "spline"},
-                      {"interpolation", "linear"},
-                      {"s_m", {0.0, 0.2, 0.35, 0.5}},
-                      {"offset_m",
-                       {{0.8e-3, 0.0}, {0.6e-3, 0.2e-3}, {0.5e-3, 0.2e-3}, {0.4e-3, 0.0}}}}},
-                    {"drive", tension(2.0)}});
+    acts.push_back(
+        {{"name", "disks"},
+         {"routing",
+          {{"type", "spline"},
+           {"interpolation", "linear"},
+           {"s_m", {0.0, 0.2, 0.35, 0.5}},
+           {"offset_m", {{0.8e-3, 0.0}, {0.6e-3, 0.2e-3}, {0.5e-3, 0.2e-3}, {0.4e-3, 0.0}}}}},
+         {"drive", tension(2.0)}});
     acts.push_back({{"name", "short"},
                     {"routing", {{"type", "straight"}, {"offset_m", {-0.7e-3, 0.0}}}},
                     {"span_m", {0.0, 0.25}},
                     {"drive", tension(1.0)}});
   } else {
-    acts.push_back({{"name", "converging"},
-                    {"routing",
-                     {{"type", "spline"},
-                      {"interpolation", "cubic"},
-                      {"s_m", {0.0, 0.15, 0.3, 0.5}},
-                      {"offset_m",
-                       {{0.9e-3, 0.0}, {0.75e-3, 0.05e-3}, {0.6e-3, 0.1e-3}, {0.4e-3, 0.1e-3}}}}},
-                    {"drive", tension(2.0)}});
+    acts.push_back(
+        {{"name", "converging"},
+         {"routing",
+          {{"type", "spline"},
+           {"interpolation", "cubic"},
+           {"s_m", {0.0, 0.15, 0.3, 0.5}},
+           {"offset_m", {{0.9e-3, 0.0}, {0.75e-3, 0.05e-3}, {0.6e-3, 0.1e-3}, {0.4e-3, 0.1e-3}}}}},
+         {"drive", tension(2.0)}});
   }
   return rod::parse_scenario(doc);
 }

@@ -172,8 +172,8 @@ TEST(RodDynamics, TaperedRodAtRestReproducesTheStaticSolverAtOrderFour) {
   const Eigen::Vector3d p_ref =
       static_reference(m, loads, 128, kTightTolerance).tip_state.head<3>();
   // The jump at s = 0.3 is a grid node.
-  EXPECT_TRUE(expect_rest_converges_at_order_four(m, loads, p_ref, {0.3}, "tapered rod",
-                                                  kTightTolerance));
+  EXPECT_TRUE(
+      expect_rest_converges_at_order_four(m, loads, p_ref, {0.3}, "tapered rod", kTightTolerance));
 }
 
 // The tapered rod released from its sag: every step converges, the rod moves, the energy

@@ -18,8 +18,7 @@ namespace {
 /// Bit-for-bit equality of two Locals (each component compared with ==).
 void expect_same(const RodRhs::Local& a, const RodRhs::Local& b, double s) {
   EXPECT_TRUE(a.Kn == b.Kn && a.Kw == b.Kw && a.Kn_inv == b.Kn_inv && a.Kw_inv == b.Kw_inv &&
-              a.ws == b.ws && a.wf == b.wf && a.dKn == b.dKn && a.dKw == b.dKw &&
-              a.dws == b.dws)
+              a.ws == b.ws && a.wf == b.wf && a.dKn == b.dKn && a.dKw == b.dKw && a.dws == b.dws)
       << "s = " << s;
 }
 

@@ -3,6 +3,8 @@
 // run with eta(s) against the run with the constant base value) is the same in both methods,
 // and strings anchored inside the body with linear spline routings (the two-section disk
 // robot), whose motion both methods follow alike.
+#include "crosscheck/dynamic.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -10,7 +12,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "crosscheck/dynamic.hpp"
 #include "rod/scenario.hpp"
 
 namespace tcasim::crosscheck {

@@ -73,8 +73,10 @@ TEST(Probes, FeProbesBetweenNodesConvergeAtTheInterpolationOrderAndAtNodesAtTheN
     const crosscheck::Run f = solve_fe(m, fe);
     ASSERT_TRUE(f.converged) << f.status;
     ASSERT_EQ(f.result.probes.size(), 4u);
-    between.push_back((f.result.probes[2].position_W_m - ref.result.probes[2].position_W_m).norm() / L);
-    at_node.push_back((f.result.probes[3].position_W_m - ref.result.probes[3].position_W_m).norm() / L);
+    between.push_back((f.result.probes[2].position_W_m - ref.result.probes[2].position_W_m).norm() /
+                      L);
+    at_node.push_back((f.result.probes[3].position_W_m - ref.result.probes[3].position_W_m).norm() /
+                      L);
   }
   const double order_between = std::log2(between[0] / between[2]) / 2.0;
   const double order_at_node = std::log2(at_node[0] / at_node[1]);

@@ -65,9 +65,9 @@ Pair solve_both(const rod::RodModel& m, int steps = kSteps, int elements = 16) {
 TEST(SplineRouting, CubicThroughPointsOfAStraightStringIsTheStraightStringInBothSolvers) {
   json a = body(), b = body();
   const Eigen::Vector2d d(0.003, 0.001);
-  a["actuators"].push_back(
-      {{"name", "s"}, {"routing", {{"type", "straight"}, {"offset_m", {d.x(), d.y()}}}},
-       {"drive", tension(1.5)}});
+  a["actuators"].push_back({{"name", "s"},
+                            {"routing", {{"type", "straight"}, {"offset_m", {d.x(), d.y()}}}},
+                            {"drive", tension(1.5)}});
   b["actuators"].push_back({{"name", "s"},
                             {"routing", spline({0.0, 0.025, 0.05, 0.075, kL}, {d, d, d, d, d})},
                             {"drive", tension(1.5)}});
@@ -76,8 +76,7 @@ TEST(SplineRouting, CubicThroughPointsOfAStraightStringIsTheStraightStringInBoth
   const Pair pa = solve_both(ma), pb = solve_both(mb);
   EXPECT_LT((pa.shooting.result.tip_position_W_m - pb.shooting.result.tip_position_W_m).norm(),
             kRoundOff * kL);
-  EXPECT_LT((pa.fe.result.tip_position_W_m - pb.fe.result.tip_position_W_m).norm(),
-            kRoundOff * kL);
+  EXPECT_LT((pa.fe.result.tip_position_W_m - pb.fe.result.tip_position_W_m).norm(), kRoundOff * kL);
   EXPECT_NEAR(pa.shooting.result.actuators[0].elongation_m,
               pb.shooting.result.actuators[0].elongation_m, kRoundOff * kL);
   // The string bends the body (the comparison is not between two straight rods).
@@ -87,7 +86,8 @@ TEST(SplineRouting, CubicThroughPointsOfAStraightStringIsTheStraightStringInBoth
 /// Helix of radius R, 1.25 turns over L, and a cubic spline through k + 1 of its points.
 constexpr double kHelixRadius = 0.003, kTurnsPerM = 12.5;
 json helix_routing() {
-  return {{"type", "helix"}, {"radius_m", kHelixRadius}, {"phase_deg", 0}, {"turns_per_m", kTurnsPerM}};
+  return {
+      {"type", "helix"}, {"radius_m", kHelixRadius}, {"phase_deg", 0}, {"turns_per_m", kTurnsPerM}};
 }
 json helix_spline(int k) {
   std::vector<double> s;
@@ -115,13 +115,16 @@ TEST(SplineRouting, CubicThroughPointsOfAHelixConvergesToTheHelixInBothSolvers) 
   std::vector<double> hs, es, ef;
   for (const int k : {4, 8, 16, 32}) {
     json j = body();
-    j["actuators"].push_back({{"name", "s"}, {"routing", helix_spline(k)}, {"drive", tension(1.0)}});
+    j["actuators"].push_back(
+        {{"name", "s"}, {"routing", helix_spline(k)}, {"drive", tension(1.0)}});
     const Pair p = solve_both(rod::parse_scenario(j), kFine, kElements);
     hs.push_back(kL / k);
-    es.push_back((p.shooting.result.tip_position_W_m - ref.shooting.result.tip_position_W_m).norm());
+    es.push_back(
+        (p.shooting.result.tip_position_W_m - ref.shooting.result.tip_position_W_m).norm());
     ef.push_back((p.fe.result.tip_position_W_m - ref.fe.result.tip_position_W_m).norm());
   }
-  std::printf("cubic spline vs helix, shooting:\n%s", test_support::convergence_table(hs, es).c_str());
+  std::printf("cubic spline vs helix, shooting:\n%s",
+              test_support::convergence_table(hs, es).c_str());
   std::printf("cubic spline vs helix, FE:\n%s", test_support::convergence_table(hs, ef).c_str());
   test_support::ExpectOrderInBracket(hs, es, kHelixOrder, kHelixOrderTolerance, 1);
   test_support::ExpectOrderInBracket(hs, ef, kHelixOrder, kHelixOrderTolerance, 1);
@@ -216,10 +219,10 @@ TEST(SplineRouting, BadSplineInputIsRejectedNamingKeyAndRule) {
   expect_error(spline({0.0, 0.05, kL}, {a, Eigen::Vector2d(0.006, 0.0), c}), r + ".offset_m[1]",
                "outside the body section");
   // Knots inside, the cubic between them outside (it overshoots toward the edge).
-  expect_error(spline({0.0, 0.01, 0.02, kL},
-                      {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.0049, 0.0),
-                       Eigen::Vector2d(0.0049, 0.0), Eigen::Vector2d(0.0, 0.0)}),
-               r + ".offset_m", "outside the body section");
+  expect_error(
+      spline({0.0, 0.01, 0.02, kL}, {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.0049, 0.0),
+                                     Eigen::Vector2d(0.0049, 0.0), Eigen::Vector2d(0.0, 0.0)}),
+      r + ".offset_m", "outside the body section");
   json bad = spline({0.0, kL}, {a, b});
   bad["interpolation"] = "quadratic";
   expect_error(bad, r + ".interpolation", "must be one of");
@@ -232,15 +235,16 @@ TEST(SplineRouting, BadSplineInputIsRejectedNamingKeyAndRule) {
   expect_error(spline({0.02, 0.08}, {a, b}), "actuators[0].span_m", "inside the spline",
                json::array({0.01, 0.08}));
   // A kink on a precurved body where the string folds back (e3 . q* <= 0 on one side).
-  json folded = with_routing(spline({0.0, 0.05, kL}, {a, Eigen::Vector2d(0.004, 0.0), a}, "linear"));
+  json folded =
+      with_routing(spline({0.0, 0.05, kL}, {a, Eigen::Vector2d(0.004, 0.0), a}, "linear"));
   folded["body"]["reference_curvature_1_m"] = {0.0, 300.0, 0.0};
-  test_support::expect_input_error([&] { (void)rod::parse_scenario(folded); },
-                                   r + ".offset_m", "fold");
+  test_support::expect_input_error([&] { (void)rod::parse_scenario(folded); }, r + ".offset_m",
+                                   "fold");
 }
 
 TEST(SplineRouting, SpanDefaultsToTheKnotsAndTheCubicThroughTwoPointsIsTheLine) {
-  const rod::RodModel m = rod::parse_scenario(
-      with_routing(spline({0.02, 0.08}, {Eigen::Vector2d(0.001, 0.0), Eigen::Vector2d(0.003, 0.0)})));
+  const rod::RodModel m = rod::parse_scenario(with_routing(
+      spline({0.02, 0.08}, {Eigen::Vector2d(0.001, 0.0), Eigen::Vector2d(0.003, 0.0)})));
   EXPECT_DOUBLE_EQ(m.actuators[0].span_start_m(), 0.02);
   EXPECT_DOUBLE_EQ(m.actuators[0].span_end_m(kL), 0.08);
   const rod::Routing& ro = m.actuators[0].routing;
@@ -259,12 +263,11 @@ constexpr double kFdStep = 1e-6, kFdTolerance1 = 1e-9, kFdTolerance2 = 1e-8;
 TEST(SplineRouting, DerivativesMatchCentralDifferencesAndTheCubicIsC2AtItsPoints) {
   for (const char* interpolation : {"cubic", "linear"}) {
     SCOPED_TRACE(interpolation);
-    const rod::RodModel m = rod::parse_scenario(with_routing(
-        spline({0.0, 0.02, 0.05, 0.07, kL},
-               {Eigen::Vector2d(-0.002, 0.0), Eigen::Vector2d(-0.001, 0.002),
-                Eigen::Vector2d(0.0, 0.003), Eigen::Vector2d(0.001, 0.002),
-                Eigen::Vector2d(0.0, -0.002)},
-               interpolation)));
+    const rod::RodModel m = rod::parse_scenario(with_routing(spline(
+        {0.0, 0.02, 0.05, 0.07, kL},
+        {Eigen::Vector2d(-0.002, 0.0), Eigen::Vector2d(-0.001, 0.002), Eigen::Vector2d(0.0, 0.003),
+         Eigen::Vector2d(0.001, 0.002), Eigen::Vector2d(0.0, -0.002)},
+        interpolation)));
     const rod::Routing& ro = m.actuators[0].routing;
     for (const double s : {0.004, 0.031, 0.066, 0.093}) {  // inside pieces
       const Eigen::Vector3d fd1 = (ro.r(s + kFdStep) - ro.r(s - kFdStep)) / (2.0 * kFdStep);

@@ -101,8 +101,7 @@ TEST(Loads, CharacteristicForceIsTheLargerOfTheBendingScaleAndTheLargestLoad) {
   EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), 4.0);
   l = Loads::from_model(m);
   l.gravity_W_m_s2 = {0.0, 0.0, -1e6};
-  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l),
-                   m.mass_per_length_kg_m(0.0) * 1e6 * L);
+  EXPECT_DOUBLE_EQ(characteristic_force_N(m, l), m.mass_per_length_kg_m(0.0) * 1e6 * L);
 }
 
 }  // namespace

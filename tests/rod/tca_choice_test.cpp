@@ -13,7 +13,8 @@ namespace {
 
 using namespace tcasim;
 
-const std::string kTwoTcas = std::string(TCASIM_SOURCE_DIR) + "/validation/scenarios/fig5-tcas.json";
+const std::string kTwoTcas =
+    std::string(TCASIM_SOURCE_DIR) + "/validation/scenarios/fig5-tcas.json";
 
 std::string flag(const std::string& key) { return "--" + key; }
 

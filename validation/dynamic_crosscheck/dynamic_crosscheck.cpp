@@ -1,7 +1,7 @@
-// validate_dynamic_crosscheck: the two rod dynamics (shooting with BDF-alpha, cosserat/dynamics.hpp;
-// beam FE with Lie-group generalized-alpha, beam_fe/dynamics.hpp) on a dynamic suite: the
-// difference of their tip trajectories (max over time) falling at the expected orders in dt and
-// in h, and their agreement at the finest settings.
+// validate_dynamic_crosscheck: the two rod dynamics (shooting with BDF-alpha,
+// cosserat/dynamics.hpp; beam FE with Lie-group generalized-alpha, beam_fe/dynamics.hpp) on a
+// dynamic suite: the difference of their tip trajectories (max over time) falling at the expected
+// orders in dt and in h, and their agreement at the finest settings.
 //
 // What it checks (docs/validation.md "validate_dynamic_crosscheck")
 //   Both methods discretize the same continuum problem (docs/conventions.md), so their
@@ -19,7 +19,8 @@
 //      time errors drop out: the difference falls at the FE order (2 linear, 4 quadratic).
 //   4. grid study: the shooting grid N, N/2, ... at the h study's dt: successive differences fall
 //      at fourth order (RK4).
-//   5. agreement (with step 2): at the finest settings the difference is <= 1e-6 L over the whole trajectory,
+//   5. agreement (with step 2): at the finest settings the difference is <= 1e-6 L over the whole
+//   trajectory,
 //      and the time-extrapolated difference (spatial + model) is <= 1e-6 L as well.
 //   Smooth forcing (sine and smoothstep profiles, zero slope at t = 0) keeps both schemes at
 //   second order. The released cantilever (a step in the load) excites every bending mode; its
@@ -85,7 +86,7 @@ struct Case {
   OrderGate dt_order;        ///< expected order of the difference in dt
   /// Expected order of each method's own time error |p(dt) - p(dt/2)| (absent: dt_order).
   std::optional<OrderGate> own_dt_order;
-  bool agreement = true;     ///< gate the time-extrapolated difference <= kAgreementOverL L
+  bool agreement = true;  ///< gate the time-extrapolated difference <= kAgreementOverL L
   /// Also gate the finest difference itself <= kAgreementOverL L (the full run's finest dt; the
   /// quick run's dt is too coarse for it and gates the extrapolated difference only).
   bool agreement_at_finest_dt = true;
@@ -194,7 +195,8 @@ std::vector<Case> suite(bool quick) {
   return s;
 }
 
-xc::DynamicSettings settings_of(const Case& c, double dt, int steps, int order, int elements) {
+xc::DynamicSettings settings_of(const Case& c, double dt, std::optional<int> steps, int order,
+                                int elements) {
   xc::DynamicSettings s;
   s.duration_s = c.duration_s;
   s.dt_s = dt;
@@ -270,9 +272,8 @@ bool dt_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out,
       self_fe = fmt::format("{:.6e}", fe_self.back());
     }
     out.dt_study << fmt::format("{},{:.6e},{},{},{:.6e},{:.6e},{:.6f},{},{},{:.3f},{:.3f}\n",
-                                c.name, dt, sh.back().grid_steps, c.elements, d.max_m,
-                                diff.back(), d.at_t_s, self_sh, self_fe, sh.back().wall_s,
-                                fe.back().wall_s);
+                                c.name, dt, sh.back().grid_steps, c.elements, d.max_m, diff.back(),
+                                d.at_t_s, self_sh, self_fe, sh.back().wall_s, fe.back().wall_s);
     fmt::print("  dt {:9.3e} s: |fe - shooting| {:.3e} L at t = {:.3f} s{} ({:.2f} s + {:.2f} s)\n",
                dt, diff.back(), d.at_t_s,
                i > 0 ? fmt::format("; own time error: shooting {} L, fe {} L", self_sh, self_fe)
@@ -300,19 +301,19 @@ bool dt_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out,
   out.summary << fmt::format("{},run,,{:.6e},{},{},{:.6e},{},{}\n", c.name, dts.back(), c.steps,
                              c.elements, finest, extrapolated_text,
                              c.agreement ? fmt::format("{:.0e}", kAgreementOverL) : "");
-  fmt::print("  finest: |fe - shooting| {:.3e} L at dt {:g} s (N {}, {} quadratic elements){}\n",
-             finest, dts.back(), c.steps, c.elements,
-             second_order ? fmt::format("; extrapolated in dt {:.3e} L", extrapolated)
-                          : std::string());
+  fmt::print(
+      "  finest: |fe - shooting| {:.3e} L at dt {:g} s (N {}, {} quadratic elements){}\n", finest,
+      dts.back(), c.steps, c.elements,
+      second_order ? fmt::format("; extrapolated in dt {:.3e} L", extrapolated) : std::string());
   if (c.agreement && c.agreement_at_finest_dt) {
     g.at_most(fmt::format("{}: max_t |fe - shooting| / L at dt {:g} s, N {}, {} quadratic elements",
                           c.name, dts.back(), c.steps, c.elements),
               finest, kAgreementOverL);
   }
   if (c.agreement) {
-    g.at_most(fmt::format("{}: time-extrapolated max_t |fe - shooting| / L (spatial + model)",
-                          c.name),
-              extrapolated, kAgreementOverL);
+    g.at_most(
+        fmt::format("{}: time-extrapolated max_t |fe - shooting| / L (spatial + model)", c.name),
+        extrapolated, kAgreementOverL);
   }
   std::ofstream traj(out_dir + "/" + c.name + "_trajectory.csv");
   traj << xc::dynamic_csv(sh.back(), {fe.back()}, {"fe"});
@@ -323,8 +324,9 @@ bool dt_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out,
 void h_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out) {
   const double dt = c.h_dt_s;
   const int fine_steps = c.grids.empty() ? c.steps : 2 * c.grids.back();
-  auto pair = [&](xc::DynamicMethod method, int steps, int order, int elements) {
-    const xc::DynamicRun a = xc::run_dynamics(m, method, settings_of(c, dt, steps, order, elements));
+  auto pair = [&](xc::DynamicMethod method, std::optional<int> steps, int order, int elements) {
+    const xc::DynamicRun a =
+        xc::run_dynamics(m, method, settings_of(c, dt, steps, order, elements));
     const xc::DynamicRun b =
         xc::run_dynamics(m, method, settings_of(c, dt / 2, steps, order, elements));
     return xc::extrapolate_in_time(a, b);
@@ -336,7 +338,7 @@ void h_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out) {
     const std::size_t n = all.size();
     std::vector<double> h, e;
     for (std::size_t i = 0; i < n; ++i) {
-      const xc::DynamicRun fe = pair(xc::DynamicMethod::kFe, 0, order, all[i]);
+      const xc::DynamicRun fe = pair(xc::DynamicMethod::kFe, std::nullopt, order, all[i]);
       if (!gate_run(g, fmt::format("{} h study: FE order {} {} elements", c.name, order, all[i]),
                     fe)) {
         return;
@@ -344,8 +346,8 @@ void h_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out) {
       const xc::TrajectoryDifference d = xc::trajectory_difference(fe, sh);
       h.push_back(m.length_m / all[i]);
       e.push_back(d.max_m / m.length_m);
-      out.h_study << fmt::format("{},{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6f}\n", c.name, dt,
-                                 order, all[i], h.back(), d.max_m, e.back(), d.at_t_s);
+      out.h_study << fmt::format("{},{:.6e},{},{},{:.6e},{:.6e},{:.6e},{:.6f}\n", c.name, dt, order,
+                                 all[i], h.back(), d.max_m, e.back(), d.at_t_s);
       fmt::print("  order {} {:3d} elements: |fe - shooting| (extrapolated in dt) {:.3e} L\n",
                  order, all[i], e.back());
     }
@@ -376,8 +378,9 @@ void grid_study(Gates& g, const Case& c, const rod::RodModel& m, Outputs& out) {
     fmt::print("  N {:4d}: |p(N) - p(2N)| {:.3e} L\n", c.grids[i], e.back());
   }
   if (h.size() >= 2) {
-    gate_orders(g, fmt::format("{}: shooting grid, |p(N) - p(2N)| against L / N (dt {:g} s)",
-                               c.name, c.h_dt_s),
+    gate_orders(g,
+                fmt::format("{}: shooting grid, |p(N) - p(2N)| against L / N (dt {:g} s)", c.name,
+                            c.h_dt_s),
                 h, e, {kGridOrder, kGridOrderTolerance, ""}, out.orders, c.name,
                 "shooting grid vs L/N");
   }

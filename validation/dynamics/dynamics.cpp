@@ -33,8 +33,8 @@
 //      temperatures falling like 1 / s as the drive is slowed s times (order in [0.85, 1.15]).
 //      Writes pwm.csv, pwm_quasi_static_order.csv (validation/dynamics/tca_cases.cpp).
 //   8. Heated quasi-static limit: the circular manipulator (damping ratio ~0.5) heated 25 ->
-//      90 degC by smoothstep ramps over tau = 1, 2, 4 s (quick 1, 2 s at dt 10 ms): the gap to the static
-//      solution at the instantaneous temperature falls like 1 / tau (order in [0.85, 1.15]).
+//      90 degC by smoothstep ramps over tau = 1, 2, 4 s (quick 1, 2 s at dt 10 ms): the gap to the
+//      static solution at the instantaneous temperature falls like 1 / tau (order in [0.85, 1.15]).
 //      Writes heated_ramp.csv, heated_ramp_order.csv.
 // Usage
 //   validate_dynamics --out-dir out/dynamics            (full: minutes)

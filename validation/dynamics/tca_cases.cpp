@@ -61,8 +61,8 @@ PwmRod pwm_rod(double slow) {
   for (auto& a : j["actuators"]) {
     nlohmann::json& p = a["drive"]["electric"]["voltage_V"]["pwm"];
     p["period_s"] = p["period_s"].get<double>() * slow;
-    r.pwm.push_back({p["period_s"].get<double>(), p["duty"].get<double>(),
-                     p["high"].get<double>(), p["low"].get<double>()});
+    r.pwm.push_back({p["period_s"].get<double>(), p["duty"].get<double>(), p["high"].get<double>(),
+                     p["low"].get<double>()});
   }
   r.model = rod::parse_scenario(j, scenario_dir().string());
   for (auto& a : r.model.actuators) a.drive.electric.at(0).thermal.heat_capacity_J_K *= slow;
@@ -85,8 +85,8 @@ double out_of_plane_ratio(const std::vector<Eigen::Vector3d>& tip) {
 
 void pwm_three_tca(validation::Gates& g, const std::string& out, bool quick) {
   const double dt = quick ? kPwmDtQuick : kPwmDt;
-  const std::vector<double> slows = quick ? std::vector<double>{1.0, 2.0}
-                                          : std::vector<double>{1.0, 2.0, 4.0};
+  const std::vector<double> slows =
+      quick ? std::vector<double>{1.0, 2.0} : std::vector<double>{1.0, 2.0, 4.0};
   const double base_duration = quick ? 4.0 : 8.0;  // s, at slow = 1
   fmt::print("Step 7: PWM-driven three-TCA rod in 3-D (dt {} s, drive slowed by", dt);
   for (const double s : slows) fmt::print(" {}", s);
@@ -134,10 +134,10 @@ void pwm_three_tca(validation::Gates& g, const std::string& out, bool quick) {
       T_cf_rows.push_back(cf);
     };
     const long every = std::lround(0.125 * slow / dt);
-    const dc::QuasiStaticRun run =
-        dc::quasi_static_run(m, o, [&m](double t) { return t > 0.0 ? rod::Loads::at_time(m, t)
-                                                                   : rod::Loads::from_model(m); },
-                             steps, every, each_step);
+    const dc::QuasiStaticRun run = dc::quasi_static_run(
+        m, o,
+        [&m](double t) { return t > 0.0 ? rod::Loads::at_time(m, t) : rod::Loads::from_model(m); },
+        steps, every, each_step);
     const std::string tag = fmt::format("PWM three-TCA rod, drive slowed {}x", slow);
     if (!g.check(tag + ": every step converges", run.converged,
                  run.converged ? fmt::format("{} steps", steps) : run.message, "all converge")) {
@@ -173,8 +173,9 @@ void pwm_three_tca(validation::Gates& g, const std::string& out, bool quick) {
   std::ofstream orders(out + "/pwm_quasi_static_order.csv");
   orders << "study,h,error,observed_order\n";
   // A viscous lag behind a drive of rate 1 / s: gap ~ (relaxation time) x (static tip speed).
-  gate_orders(g, "PWM three-TCA rod: gap to the static tip at the instantaneous temperatures vs "
-                 "drive rate 1/s (order 1)",
+  gate_orders(g,
+              "PWM three-TCA rod: gap to the static tip at the instantaneous temperatures vs "
+              "drive rate 1/s (order 1)",
               rate, gap, 1.0, 0.15, orders);
 }
 
@@ -194,10 +195,9 @@ void heated_quasi_static(validation::Gates& g, const std::string& out, bool quic
     o.steps = cosserat::recommended_steps(m, o);
     o.tolerance = 1e-12;
     const long steps = std::lround(tau / o.dt_s);
-    const dc::QuasiStaticRun run =
-        dc::quasi_static_run(m, o, dc::heating_ramp(m, units::degC_to_K(25.0),
-                                                    units::degC_to_K(90.0), tau),
-                             steps, steps / 20);
+    const dc::QuasiStaticRun run = dc::quasi_static_run(
+        m, o, dc::heating_ramp(m, units::degC_to_K(25.0), units::degC_to_K(90.0), tau), steps,
+        steps / 20);
     if (!g.check(fmt::format("heated ramp {} s: every step converges", tau), run.converged,
                  run.converged ? "converged" : run.message, "all converge")) {
       return;
@@ -215,8 +215,9 @@ void heated_quasi_static(validation::Gates& g, const std::string& out, bool quic
   }
   std::ofstream orders(out + "/heated_ramp_order.csv");
   orders << "study,h,error,observed_order\n";
-  gate_orders(g, "heated ramp: gap to the static solution at the instantaneous temperature vs "
-                 "ramp rate 1/tau (order 1)",
+  gate_orders(g,
+              "heated ramp: gap to the static solution at the instantaneous temperature vs "
+              "ramp rate 1/tau (order 1)",
               rate, gap, 1.0, 0.15, orders);
 }
 

@@ -1,9 +1,9 @@
 #pragma once
-/// References and runs of the TCA-driven rod-dynamics checks (tests/cosserat/dynamics_checks_test.cpp
-/// and validate_dynamics): the closed-form temperature of the lumped thermal law under a PWM
-/// input (piecewise exponential, and its periodic steady state), the static solution at given
-/// TCA temperatures, and a slowly heated damped rod against the static solution at its
-/// instantaneous temperature. Header-only (public API of cosserat::RodDynamics and
+/// References and runs of the TCA-driven rod-dynamics checks
+/// (tests/cosserat/dynamics_checks_test.cpp and validate_dynamics): the closed-form temperature of
+/// the lumped thermal law under a PWM input (piecewise exponential, and its periodic steady state),
+/// the static solution at given TCA temperatures, and a slowly heated damped rod against the static
+/// solution at its instantaneous temperature. Header-only (public API of cosserat::RodDynamics and
 /// cosserat::ShootingSolver only).
 #include <Eigen/Core>
 #include <algorithm>
@@ -124,7 +124,8 @@ inline QuasiStaticRun quasi_static_run(
     rod::Loads l = loads_at(t);
     const std::vector<std::vector<double>> T = d.segment_temperatures_K();
     for (std::size_t i = 0; i < T.size(); ++i)
-      for (std::size_t j = 0; j < T[i].size(); ++j) l.actuators[i].segments[j].temperature_K = T[i][j];
+      for (std::size_t j = 0; j < T[i].size(); ++j)
+        l.actuators[i].segments[j].temperature_K = T[i][j];
     if (!ref.solve(l, sol).converged()) {
       out.message = "static reference at t = " + std::to_string(t) + " did not converge";
       return false;
