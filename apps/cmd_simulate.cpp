@@ -98,17 +98,14 @@ void add_simulate_command(CLI::App& app) {
     const study::SimulationOptions& o = f.o;
     study::check_method(o.method, study::OptionNames::kFlags);
     // A flag of the other method is refused, not ignored.
-    const bool fe = o.method == "fe";
-    for (const CLI::Option* flag :
-         {alpha_flag, steps_flag, elements_flag, order_flag, rho_inf_flag}) {
-      const bool fe_flag = flag == elements_flag || flag == order_flag || flag == rho_inf_flag;
-      if (flag->count() > 0 && fe_flag != fe) {
-        throw InputError(flag->get_name(), flag->as<std::string>(),
-                         fe_flag ? "applies to --method fe only (cosserat: --steps, --alpha)"
-                                 : "applies to --method cosserat only (fe: --elements, --order, "
-                                   "--rho-inf)");
-      }
+    std::vector<study::GivenOption> given;
+    for (const auto& [flag, key] :
+         {std::pair{alpha_flag, "alpha"}, std::pair{steps_flag, "steps"},
+          std::pair{elements_flag, "elements"}, std::pair{order_flag, "order"},
+          std::pair{rho_inf_flag, "rho_inf"}}) {
+      if (flag->count() > 0) given.push_back({key, flag->as<std::string>()});
     }
+    study::refuse_other_method_options(o.method, given, study::OptionNames::kFlags);
     const long long n_steps = study::check_simulation_options(o, study::OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(f.scenario);
 

@@ -68,15 +68,6 @@ struct Trajectory {
 /// Raised inside the C++ loop when the Python progress callback raised (its error is set).
 struct CallbackRaised {};
 
-/// An option of the other method is refused, not ignored (as the command line).
-void refuse_for(const py::object& v, const char* key, bool wrong_method, bool fe_option) {
-  if (v.is_none() || !wrong_method) return;
-  throw InputError(key, py::str(v).cast<std::string>(),
-                   fe_option ? "applies to method=\"fe\" only (cosserat: steps, alpha)"
-                             : "applies to method=\"cosserat\" only (fe: elements, order, "
-                               "rho_inf)");
-}
-
 }  // namespace
 
 void register_simulate(py::module_& m) {
@@ -154,12 +145,15 @@ void register_simulate(py::module_& m) {
          bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         study::check_method(method, study::OptionNames::kPython);
-        const bool fe = method == "fe";
-        refuse_for(alpha, "alpha", fe, false);
-        refuse_for(steps, "steps", fe, false);
-        refuse_for(elements, "elements", !fe, true);
-        refuse_for(order, "order", !fe, true);
-        refuse_for(rho_inf, "rho_inf", !fe, true);
+        // A keyword of the other method is refused, not ignored.
+        std::vector<study::GivenOption> given;
+        for (const auto& [value, key] :
+             {std::pair{&alpha, "alpha"}, std::pair{&steps, "steps"},
+              std::pair{&elements, "elements"}, std::pair{&order, "order"},
+              std::pair{&rho_inf, "rho_inf"}}) {
+          if (!value->is_none()) given.push_back({key, py::str(*value).cast<std::string>()});
+        }
+        study::refuse_other_method_options(method, given, study::OptionNames::kPython);
         study::SimulationOptions o;
         o.method = method;
         o.duration_s = number_arg(duration_s, "duration_s");

@@ -25,9 +25,12 @@ constexpr double kGuessTolerance = 1e-3;
 /// The guess's TCA tensions solve T_k = F_tca(delta_k(T)) to this residual over F_c.
 constexpr double kGuessTensionTolerance = 1e-12;
 
-/// The closed-form strains (rod::closed_form_strains) of tensions cTs: e = nu - nu*, omega.
-void closed_form(const rod::RodModel& m, const std::vector<double>& cTs, Vec3& e, Vec3& omega) {
-  const rod::ConstantStrains cf = rod::closed_form_strains(m, cTs);
+/// The closed-form strains (rod::closed_form_strains) of tensions cTs: e = nu - nu*, omega, with
+/// the base section's stiffnesses K_nu, K_omega and reference curvature omega*(0).
+void closed_form(const rod::RodModel& m, const Vec3& K_nu, const Vec3& K_omega,
+                 const Vec3& omega_star, const std::vector<double>& cTs, Vec3& e, Vec3& omega) {
+  const rod::ConstantStrains cf =
+      rod::closed_form_strains(m, rod::SectionStiffness{K_nu, K_omega}, omega_star, cTs);
   e = cf.e;
   omega = cf.omega;
 }
@@ -47,7 +50,7 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const rod::Loads& act, doubl
     Vec6 mean = Vec6::Zero();
     for (int it = 0; it < kGuessIterations; ++it) {
       guess_tensions(mean, cTs, x);
-      closed_form(model, cTs, e, omega);
+      closed_form(model, K_nu, K_omega, omega_star, cTs, e, omega);
       Vec6 next_mean, base;
       load_strains(nu_star + e + mean.head<3>(), omega + mean.tail<3>(), next_mean, base);
       if (!next_mean.allFinite() || !base.allFinite()) break;
@@ -55,7 +58,7 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const rod::Loads& act, doubl
       mean = next_mean;
       if (change <= kGuessTolerance * (1.0 / L + mean.lpNorm<Eigen::Infinity>())) {
         guess_tensions(mean, cTs, x);
-        closed_form(model, cTs, e, omega);
+        closed_form(model, K_nu, K_omega, omega_star, cTs, e, omega);
         x.head<3>() = e + base.head<3>();
         x.segment<3>(3) = omega + base.tail<3>();
         if (used_gravity) *used_gravity = true;
@@ -65,7 +68,7 @@ Eigen::VectorXd ShootingSolver::Impl::initial_guess(const rod::Loads& act, doubl
     }
   }
   guess_tensions(Vec6::Zero(), cTs, x);  // without gravity (none, or no fixed point)
-  closed_form(model, cTs, e, omega);
+  closed_form(model, K_nu, K_omega, omega_star, cTs, e, omega);
   x.head<3>() = e;
   x.segment<3>(3) = omega;
   layout->reduce_unknowns(x);
@@ -77,6 +80,7 @@ void ShootingSolver::Impl::guess_tensions(const Vec6& extra, std::vector<double>
   if (n_tca == 0) return;
   rod::GuessTensionOptions o;
   o.tolerance_N = kGuessTensionTolerance * Fc;
+  o.base_stiffness = rod::SectionStiffness{K_nu, K_omega};
   Eigen::VectorXd T = Eigen::VectorXd::Zero(n_tca);
   const bool ok = rod::solve_guess_tensions(model, act_of, scaled_segments, extra, o, cTs, T);
   if (ok) {

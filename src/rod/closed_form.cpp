@@ -36,6 +36,12 @@ ConstantStrains closed_form_strains(const RodModel& model, const std::vector<dou
   return strains_of(model, model.stiffness_at(0.0), model.reference_curvature_at(0.0), cT);
 }
 
+ConstantStrains closed_form_strains(const RodModel& model, const SectionStiffness& K_base,
+                                    const Eigen::Vector3d& omega_star_base,
+                                    const std::vector<double>& cT) {
+  return strains_of(model, K_base, omega_star_base, cT);
+}
+
 std::vector<double> closed_form_elongations_m(const RodModel& model,
                                               const std::vector<double>& cT) {
   const SectionStiffness K = model.stiffness_at(0.0);
@@ -73,7 +79,8 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
   if (n == 0) return true;
   const double L = model.length_m;
   // The base section's properties, evaluated once for every evaluation of g below.
-  const SectionStiffness K = model.stiffness_at(0.0);
+  const SectionStiffness K =
+      options.base_stiffness ? *options.base_stiffness : model.stiffness_at(0.0);
   const Eigen::Vector3d& K_nu = K.shear_extension;
   const Eigen::Vector3d& K_omega = K.bending_torsion;
   const Eigen::Vector3d omega_star = model.reference_curvature_at(0.0);

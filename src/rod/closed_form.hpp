@@ -6,6 +6,7 @@
 /// and the TCA temperature ramp of the load continuation. Each solver keeps its own
 /// discretization and nonlinear strategy; only this guess math is shared.
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "rod/model.hpp"
@@ -23,6 +24,11 @@ struct ConstantStrains {
 /// omega_y = omega*_y + sum c_i T_i r_i,x / (E I_y), others as the reference;
 /// cT[i] = count_i T_i [N] for every actuator of `model`.
 ConstantStrains closed_form_strains(const RodModel& model, const std::vector<double>& cT);
+/// closed_form_strains with the base section's stiffnesses K_base = model.stiffness_at(0) and
+/// reference curvature omega*(0) given by a caller that evaluates the closed form many times.
+ConstantStrains closed_form_strains(const RodModel& model, const SectionStiffness& K_base,
+                                    const Eigen::Vector3d& omega_star_base,
+                                    const std::vector<double>& cT);
 
 /// The closed form's string elongations, linear in the tensions:
 ///   delta_i = -L sum_j C_ij c_j T_j,  C_ij = 1/(E A) + r_i,y r_j,y / (E I_x) + r_i,x r_j,x / (E
@@ -50,6 +56,8 @@ struct GuessTensionOptions {
   double tolerance_rel = 0.0;
   int max_iterations = 30;  ///< Newton steps
   int max_halvings = 30;    ///< backtracking halvings per step
+  /// model.stiffness_at(0), when the caller has it (else evaluated once per call).
+  std::optional<SectionStiffness> base_stiffness;
 };
 
 /// TCA tensions of the guess: with tca_actuators = indices k of the TCA drives and

@@ -44,6 +44,29 @@ void require_count(long long value, const std::string& name, long long lo, long 
   }
 }
 
+void refuse_other_method_options(const std::string& method, const std::vector<GivenOption>& given,
+                                 OptionNames style) {
+  const auto name = [style](const char* key) { return option_name(key, style); };
+  const auto method_is = [style](const char* m) {
+    return style == OptionNames::kFlags ? fmt::format("--method {}", m)
+                                        : fmt::format("method=\"{}\"", m);
+  };
+  for (const GivenOption& g : given) {
+    const bool fe_option = g.key == "elements" || g.key == "order" || g.key == "rho_inf";
+    const bool shooting_option = g.key == "steps" || g.key == "alpha";
+    if (fe_option && method != "fe") {
+      throw InputError(option_name(g.key, style), g.value,
+                       fmt::format("applies to {} only (cosserat: {}, {})", method_is("fe"),
+                                   name("steps"), name("alpha")));
+    }
+    if (shooting_option && method == "fe") {
+      throw InputError(option_name(g.key, style), g.value,
+                       fmt::format("applies to {} only (fe: {}, {}, {})", method_is("cosserat"),
+                                   name("elements"), name("order"), name("rho_inf")));
+    }
+  }
+}
+
 void check_method(const std::string& method, OptionNames style) {
   require(method == "cosserat" || method == "fe", option_name("method", style), method,
           "must be cosserat or fe");

@@ -53,6 +53,18 @@ void require_count(long long value, const std::string& name, long long lo, long 
 /// Checks the solver choice: "cosserat" or "fe" (InputError naming `method` in `style`).
 void check_method(const std::string& method, OptionNames style);
 
+/// A simulation option given by the user: its key (snake_case) and its value as given.
+struct GivenOption {
+  std::string key, value;
+};
+
+/// Refuses an option of the other method than `method` ("cosserat" or "fe"), not ignored:
+/// cosserat's `steps`, `alpha` and fe's `elements`, `order`, `rho_inf` (InputError naming the
+/// first one in `given` that does not apply, its value and the rule, e.g. "applies to --method
+/// fe only (cosserat: --steps, --alpha)" in `style`).
+void refuse_other_method_options(const std::string& method, const std::vector<GivenOption>& given,
+                                 OptionNames style);
+
 /// The shooting integrator as given: steps, scheme, rtol (each absent when not given).
 struct ShootingChoice {
   std::optional<long long> steps;     ///< fixed steps, even, in [2, kMaxSteps]; default 100

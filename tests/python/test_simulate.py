@@ -127,6 +127,17 @@ def test_an_input_error_names_the_option(options, key):
     assert e.value.rule
 
 
+@pytest.mark.parametrize("method,options,rule", [
+    ("cosserat", {"elements": 4}, 'applies to method="fe" only (cosserat: steps, alpha)'),
+    ("fe", {"steps": 20}, 'applies to method="cosserat" only (fe: elements, order, rho_inf)'),
+])
+def test_an_option_of_the_other_method_is_refused_with_the_rule(method, options, rule):
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.simulate(DYNAMIC / "steel-cantilever-release.json", method, duration_s=0.002,
+                        dt_s=0.001, **options)
+    assert e.value.rule == rule, str(e.value)
+
+
 def test_progress_is_called_and_its_error_propagates():
     calls = []
     tcasim.simulate(DYNAMIC / "steel-cantilever-release.json", duration_s=0.003, dt_s=0.001,
