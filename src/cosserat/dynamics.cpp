@@ -1,5 +1,7 @@
 // Rod dynamics (cosserat/dynamics.hpp): options and setup, the loads and scales of a solve,
 // the static initialization and the time steps (BDF-alpha history, warm start).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -70,13 +72,13 @@ double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& o)
 
 int recommended_steps(const rod::RodModel& model, const DynamicsOptions& o) {
   const double n = std::ceil(model.length_m * spatial_growth_rate(model, o));
-  const int steps = static_cast<int>(std::min(n, 100000.0));
+  const int steps = static_cast<int>(std::min(n, static_cast<double>(ode::kMaxFixedSteps)));
   return std::max(20, steps + steps % 2);
 }
 
 RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : model(m), opt(o) {
-  require(o.steps >= 1 && o.steps <= 100000, "dynamics.steps", o.steps,
-          "must be an integer in [1, 100000]");
+  require(o.steps >= 1 && o.steps <= ode::kMaxFixedSteps, "dynamics.steps", o.steps,
+          fmt::format("must be an integer in [1, {}]", ode::kMaxFixedSteps));
   require(o.intervals >= 0 && (o.intervals == 0 || o.steps % o.intervals == 0),
           "dynamics.intervals", o.intervals, "must be 0 (automatic) or divide steps");
   require(std::isfinite(o.dt_s) && o.dt_s > 0.0, "dynamics.dt_s", o.dt_s, "must be > 0");

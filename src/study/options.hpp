@@ -11,6 +11,7 @@
 
 #include "beam_fe/beam_fe.hpp"
 #include "common/error.hpp"
+#include "common/ode.hpp"
 #include "cosserat/shooting.hpp"
 #include "method/method.hpp"
 #include "rod/model.hpp"
@@ -24,10 +25,8 @@ enum class OptionNames { kPython, kFlags };
 std::string option_name(const std::string& key, OptionNames style);
 
 /// Upper bounds of the counts, each with its reason.
-/// Fixed steps of the shooting integrator: RK4's error falls like N^-4 and reaches round-off
-/// near the 2048 steps of the validation reference; 100000 steps take about a second per
-/// solve, beyond that the run only burns time.
-inline constexpr int kMaxSteps = 100000;
+/// Fixed steps of the shooting integrator (common/ode.hpp says why).
+inline constexpr int kMaxSteps = ode::kMaxFixedSteps;
 /// FE elements: quadratic elements reach round-off near 1000 elements on the shipped
 /// scenarios (validate_convergence); 10000 keeps one solve within seconds and memory small.
 inline constexpr int kMaxElements = 10000;
