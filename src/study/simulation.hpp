@@ -1,8 +1,8 @@
 #pragma once
 /// One simulation of rod dynamics from the static state at t = 0 (docs/scenario-format.md
 /// "Trajectory file"), by the shooting method (cosserat/dynamics.hpp) or the beam FE
-/// (beam_fe/dynamics.hpp): the work of `tcasim simulate` and tcasim.simulate, one time loop
-/// (rod::run_trajectory) for both.
+/// (beam_fe/dynamics.hpp): the work of `tcasim simulate` and tcasim.simulate, through
+/// method::DynamicSolver and the one time loop method::run (method/dynamics.hpp).
 #include <functional>
 #include <optional>
 #include <string>
