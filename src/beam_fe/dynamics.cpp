@@ -198,15 +198,15 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
   v = vd = a = VectorXd::Zero(free_dofs);
 }
 
-void BeamDynamics::Impl::set_loads(const rod::Loads& loads_in) {
-  loads_in.validate(model);
-  rod::Loads l = loads_in.applied(model);
+void BeamDynamics::Impl::set_loads(const rod::Loads& loads) {
+  // Validated and applied; gravity by the consistent mass's row sums (node_mass, the 3-point
+  // rule of the mass matrix). An electric drive's segments then take the thermal states (the
+  // nodal forces do not depend on them).
+  current = make_load_case(model, loads, node_mass, tip_mass_kg);
   std::vector<std::vector<tca::Segment>> segments(n_act);
-  for (int i = 0; i < n_act; ++i) segments[i] = std::move(l.actuators[i].segments);
+  for (int i = 0; i < n_act; ++i) segments[i] = std::move(current.loads.actuators[i].segments);
   thermal.apply(segments);
-  for (int i = 0; i < n_act; ++i) l.actuators[i].segments = std::move(segments[i]);
-  // Gravity by the consistent mass's row sums (node_mass, the 3-point rule of the mass matrix).
-  current = make_load_case(model, l, node_mass, tip_mass_kg);
+  for (int i = 0; i < n_act; ++i) current.loads.actuators[i].segments = std::move(segments[i]);
 }
 
 void BeamDynamics::Impl::set_drive_tensions(State& s) const {

@@ -525,6 +525,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
 }
 
 double RodDynamics::time_s() const { return impl_->t; }
+double RodDynamics::time_step_s() const { return impl_->opt.dt_s; }
 int RodDynamics::intervals() const { return impl_->M; }
 int RodDynamics::steps() const { return impl_->N; }
 const std::vector<double>& RodDynamics::grid_s_m() const { return impl_->s_grid; }

@@ -110,6 +110,7 @@ class RodDynamics {
   DynamicsSummary step(const rod::Loads& loads);
 
   double time_s() const;
+  double time_step_s() const;   ///< DynamicsOptions::dt_s
   int intervals() const;        ///< M
   int state_dimension() const;  ///< 24 + actuators + TCA-driven actuators
   /// States at the grid points of the last converged solve (grid_s_m(); s_i = i L / N on a

@@ -76,10 +76,6 @@ method::DynamicOptions dynamic_options(const rod::RodModel& model, DynamicMethod
 
 const char* to_string(DynamicMethod m) { return m == DynamicMethod::kShooting ? "cosserat" : "fe"; }
 
-rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release_tip_load) {
-  return method::loads_at(model, t_s, release_tip_load);
-}
-
 std::string fe_dynamics_unsupported(const rod::RodModel& model) {
   try {
     DynamicSettings s;

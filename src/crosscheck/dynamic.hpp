@@ -48,10 +48,6 @@ struct DynamicSettings {
   int max_iterations = 30;      ///< Newton iterations per step (both methods)
 };
 
-/// Loads at t: the scenario's profiles at t (from the model at t = 0), without the tip load
-/// for t > 0 when `release_tip_load` (as `tcasim simulate --release-tip-load`).
-rod::Loads dynamic_loads_at(const rod::RodModel& model, double t_s, bool release_tip_load);
-
 /// One method's trajectory.
 struct DynamicRun {
   DynamicMethod method = DynamicMethod::kShooting;

@@ -25,8 +25,6 @@ struct Shooting {
     }
   }
   int grid_size() const { return dyn.steps(); }
-  double time_step_s() const { return dt_s; }
-  double dt_s = 0.0;
 };
 
 /// The beam FE's dynamics.
@@ -40,7 +38,6 @@ struct Fe {
     for (const auto& q : dyn.state().q_WB) r.centerline_R_WB.push_back(q.toRotationMatrix());
   }
   int grid_size() const { return dyn.discretization().element_count(); }
-  double time_step_s() const { return dyn.time_step_s(); }
 };
 
 template <class Summary>
@@ -68,7 +65,6 @@ DynamicSolver::DynamicSolver(const rod::RodModel& model, const DynamicOptions& o
   if (const auto* o = std::get_if<cosserat::DynamicsOptions>(&options)) {
     impl_.reset(
         new Impl{model, std::variant<Shooting, Fe>(std::in_place_type<Shooting>, model, *o)});
-    std::get<Shooting>(impl_->solver).dt_s = o->dt_s;
   } else {
     impl_.reset(
         new Impl{model, std::variant<Shooting, Fe>(std::in_place_type<Fe>, model,
@@ -91,7 +87,7 @@ double DynamicSolver::time_s() const {
 }
 
 double DynamicSolver::time_step_s() const {
-  return std::visit([](const auto& s) { return s.time_step_s(); }, impl_->solver);
+  return std::visit([](const auto& s) { return s.dyn.time_step_s(); }, impl_->solver);
 }
 
 Eigen::Vector3d DynamicSolver::tip_position_W_m() const {
@@ -115,9 +111,9 @@ rod::Result DynamicSolver::frame() const {
   r.scenario = impl_->model.name;
   r.method = method();
   r.converged = true;
-  std::visit([&](const auto& s) { s.shape(r); }, impl_->solver);
   std::visit(
       [&](const auto& s) {
+        s.shape(r);
         r.tip_position_W_m = s.dyn.tip_position_W_m();
         r.tip_R_WB = s.dyn.tip_rotation_W();
       },

@@ -16,14 +16,8 @@
 namespace tcasim::beam_fe {
 namespace {
 
-rod::RodModel steel() { return test_support::circular_rod(0.5, 2e-3, 200e9, 0.25, 8000.0); }
-
-rod::Loads sag(const rod::RodModel& m, double tip_kg) {
-  rod::Loads l = rod::Loads::from_model(m);
-  l.gravity_W_m_s2 = Eigen::Vector3d(-9.81, 0.0, 0.0);
-  l.tip_force_W_N = tip_kg * l.gravity_W_m_s2;
-  return l;
-}
+using test_support::sag;
+rod::RodModel steel() { return test_support::steel_cantilever_till(); }
 
 /// Tip positions after every step over `steps` steps; the solver type Dyn runs initialize/step.
 template <class Dyn>

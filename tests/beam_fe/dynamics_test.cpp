@@ -20,23 +20,9 @@
 namespace tcasim::beam_fe {
 namespace {
 
-/// The steel cantilever of [Till2019] (E 200 GPa, poisson 0.25, r 1 mm, rho 8000, L 0.5 m).
-rod::RodModel steel() { return test_support::circular_rod(0.5, 2e-3, 200e9, 0.25, 8000.0); }
-
-/// Gravity along -x and the weight of `tip_kg` as a tip force.
-rod::Loads sag(const rod::RodModel& m, double tip_kg) {
-  rod::Loads l = rod::Loads::from_model(m);
-  l.gravity_W_m_s2 = Eigen::Vector3d(-9.81, 0.0, 0.0);
-  l.tip_force_W_N = tip_kg * l.gravity_W_m_s2;
-  return l;
-}
-
-rod::RodModel steel_with_strings() {
-  rod::RodModel m = steel();
-  test_support::add_tension_string(m, "straight", 0.8e-3, 0.0, 2.0);
-  test_support::add_tension_string(m, "helix", 0.0, 0.7e-3, 1.0, 1, 2.0);
-  return m;
-}
+using test_support::sag;
+/// The steel cantilever of [Till2019].
+rod::RodModel steel() { return test_support::steel_cantilever_till(); }
 
 // The step Jacobian dr/dx (elastic and string tangent through the Lie-group update, inertia,
 // gyroscopic term, Kelvin-Voigt damping with its history stress, tip moment) against central
@@ -44,7 +30,7 @@ rod::RodModel steel_with_strings() {
 TEST(BeamDynamics, StepJacobianMatchesFiniteDifferences) {
   for (const int order : {1, 2}) {
     SCOPED_TRACE(order == 1 ? "linear" : "quadratic");
-    const rod::RodModel m = steel_with_strings();
+    const rod::RodModel m = test_support::steel_cantilever_with_strings();
     DynamicsOptions o;
     o.elements = 4;
     o.order = order;
@@ -82,7 +68,7 @@ TEST(BeamDynamics, StepJacobianMatchesFiniteDifferences) {
 // history at rest): with unchanged loads the rod stays where it is.
 TEST(BeamDynamics, AStaticStateStaysAtRest) {
   for (const double eta : {0.0, 1e7}) {
-    const rod::RodModel m = steel_with_strings();
+    const rod::RodModel m = test_support::steel_cantilever_with_strings();
     DynamicsOptions o;
     o.elements = 8;
     o.dt_s = 1e-3;

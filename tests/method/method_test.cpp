@@ -18,22 +18,8 @@
 namespace tcasim::method {
 namespace {
 
-/// The steel cantilever of [Till2019] (E 200 GPa, poisson 0.25, r 1 mm, rho 8000, L 0.5 m)
-/// with a straight and a helical string.
-rod::RodModel steel_with_strings() {
-  rod::RodModel m = test_support::circular_rod(0.5, 2e-3, 200e9, 0.25, 8000.0);
-  test_support::add_tension_string(m, "straight", 0.8e-3, 0.0, 2.0);
-  test_support::add_tension_string(m, "helix", 0.0, 0.7e-3, 1.0, 1, 2.0);
-  return m;
-}
-
-/// Gravity along -x and the weight of `tip_kg` as a tip force.
-rod::Loads sag(const rod::RodModel& m, double tip_kg) {
-  rod::Loads l = rod::Loads::from_model(m);
-  l.gravity_W_m_s2 = Eigen::Vector3d(-9.81, 0.0, 0.0);
-  l.tip_force_W_N = tip_kg * l.gravity_W_m_s2;
-  return l;
-}
+using test_support::sag;
+using test_support::steel_cantilever_with_strings;
 
 /// Coarse settings of each method for fast runs.
 template <class Options>
@@ -62,7 +48,7 @@ TYPED_TEST_SUITE(BothDynamics, DynamicsMethods);
 // output_every-th step and the last; a failing step ends the rows with a "# time step ...
 // failed (STATUS)" line.
 TYPED_TEST(BothDynamics, WriteTheTrajectoryCsvAndEndAFailedRunWithItsReason) {
-  const rod::RodModel m = steel_with_strings();
+  const rod::RodModel m = steel_cantilever_with_strings();
   TypeParam o = coarse_dynamics<TypeParam>(1e-3);
   const rod::LoadsAt released = [&m](double t) { return sag(m, t > 0.0 ? 0.0 : 0.02); };
   DynamicSolver d(m, o);
@@ -98,9 +84,9 @@ constexpr double kSameState_m = 1e-9;
 // Tip mass: unset in the options, both methods take the scenario's (inertia and weight); set,
 // it replaces the scenario's.
 TYPED_TEST(BothDynamics, TakeTheScenariosTipMassUnlessTheOptionsReplaceIt) {
-  rod::RodModel with_mass = steel_with_strings();
+  rod::RodModel with_mass = steel_cantilever_with_strings();
   with_mass.tip_mass_kg = 0.02;
-  const rod::RodModel without = steel_with_strings();
+  const rod::RodModel without = steel_cantilever_with_strings();
   const auto loads = [](const rod::RodModel& m) { return sag(m, 0.0); };
   TypeParam from_scenario = coarse_dynamics<TypeParam>(1e-3);
   TypeParam given = coarse_dynamics<TypeParam>(1e-3);
@@ -127,7 +113,7 @@ TYPED_TEST(BothDynamics, TakeTheScenariosTipMassUnlessTheOptionsReplaceIt) {
 
 // Options out of range are refused with the same key in both methods.
 TYPED_TEST(BothDynamics, RefuseANegativeTipMassByTheSameKey) {
-  const rod::RodModel m = steel_with_strings();
+  const rod::RodModel m = steel_cantilever_with_strings();
   TypeParam o = coarse_dynamics<TypeParam>(1e-3);
   o.tip_mass_kg = -1.0;
   try {
@@ -165,7 +151,7 @@ rod::Result direct(const rod::RodModel& m, const beam_fe::Options& o,
 // A cold solve, then a warm-started one at other loads, through the dispatch: the numbers of
 // each method's own solver, bit for bit; reset() makes the next solve cold again.
 TYPED_TEST(BothStatics, GiveTheMethodsOwnNumbersColdAndWarm) {
-  const rod::RodModel m = steel_with_strings();
+  const rod::RodModel m = steel_cantilever_with_strings();
   const TypeParam options{};
   const std::vector<rod::Loads> loads = {sag(m, 0.0), sag(m, 0.01)};
   StaticSolver solver(m, options);

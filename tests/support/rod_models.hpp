@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/units.hpp"
+#include "rod/loads.hpp"
 #include "rod/model.hpp"
 #include "rod/scenario.hpp"
 #include "tca/tca.hpp"
@@ -143,6 +144,27 @@ inline rod::RodModel square_manipulator(double temperature_K) {
   m.gravity_W_m_s2 = kStandingGravity_m_s2;
   add_tca_string(m, "tca", manipulator_tca(), 0.003, 0.0, temperature_K, 2);
   return m;
+}
+
+/// The steel cantilever of [Till2019] (E 200 GPa, poisson 0.25, r 1 mm, rho 8000, L 0.5 m).
+inline rod::RodModel steel_cantilever_till() {
+  return circular_rod(0.5, 2e-3, 200e9, 0.25, 8000.0);
+}
+
+/// steel_cantilever_till with two tensioned strings, a straight one and a helix.
+inline rod::RodModel steel_cantilever_with_strings() {
+  rod::RodModel m = steel_cantilever_till();
+  add_tension_string(m, "straight", 0.8e-3, 0.0, 2.0);
+  add_tension_string(m, "helix", 0.0, 0.7e-3, 1.0, 1, 2.0);
+  return m;
+}
+
+/// The model's loads with gravity along -x and the weight of `tip_kg` as a tip force.
+inline rod::Loads sag(const rod::RodModel& m, double tip_kg) {
+  rod::Loads l = rod::Loads::from_model(m);
+  l.gravity_W_m_s2 = Eigen::Vector3d(-9.81, 0.0, 0.0);
+  l.tip_force_W_N = tip_kg * l.gravity_W_m_s2;
+  return l;
 }
 
 /// 4-tendon steel rod: E = 200 GPa, G = 80 GPa, r = 1 mm, L = 0.5 m, 8000 kg/m^3,

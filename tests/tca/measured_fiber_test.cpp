@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "contact_checks.hpp"
 #include "tca/tca.hpp"
 #include "test_materials.hpp"
 
@@ -130,12 +131,7 @@ TEST(MeasuredFiber, ContactResidualDerivativesMatchCentralDifferencesOnEveryBran
   const double dc = tca.closed_elongation_m();
   const double t = K(90.0);
   const double fc = tca.closed_force(t);
-  struct Case {
-    const char* what;
-    double tension_N, elongation_m;
-    std::vector<Segment> segs;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<testing::ContactCase> cases = {
       {"open", 0.5, 0.004, {{1.0, t}}},
       {"open below L", 0.5 * fc, 0.6 * dc, {{1.0, t}}},
       {"closed", fc - 0.05, dc + 1e-5, {{1.0, t}}},
@@ -146,26 +142,7 @@ TEST(MeasuredFiber, ContactResidualDerivativesMatchCentralDifferencesOnEveryBran
        0.5 * dc,
        {{0.5, K(40.0)}, {0.5, K(140.0)}}},
   };
-  const double kc = tca.contact_stiffness_N_m();
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.what);
-    const ContactResidual r = contact_residual(tca, c.tension_N, c.elongation_m, c.segs);
-    const auto phi_F = [&](double F) {
-      return contact_residual(tca, F, c.elongation_m, c.segs).phi_N;
-    };
-    const auto phi_d = [&](double d) {
-      return contact_residual(tca, c.tension_N, d, c.segs).phi_N;
-    };
-    const auto phi_T = [&](double dT) {
-      std::vector<Segment> s = c.segs;
-      for (Segment& k : s) k.temperature_K += dT;
-      return contact_residual(tca, c.tension_N, c.elongation_m, s).phi_N;
-    };
-    // Scales of the derivatives: 1 (per N), k_c (per m), k_c x 1e-4 m/K (per K).
-    EXPECT_NEAR(r.dphi_dF, central_difference(phi_F, c.tension_N, 1e-7), kFdRelTol);
-    EXPECT_NEAR(r.dphi_ddelta_N_m, central_difference(phi_d, c.elongation_m, 1e-9), kFdRelTol * kc);
-    EXPECT_NEAR(r.dphi_dT_N_K, central_difference(phi_T, 0.0, 1e-3), kFdRelTol * kc * 1e-4);
-  }
+  testing::expect_contact_residual_derivatives(tca, cases, kFdRelTol);
 }
 
 TEST(MeasuredFiber, TensionTangentsMatchFiniteDifferences) {

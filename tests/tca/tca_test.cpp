@@ -11,6 +11,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "contact_checks.hpp"
 #include "tca/curve.hpp"
 #include "test_materials.hpp"
 
@@ -367,12 +368,7 @@ TEST(TcaContact, ContactResidualDerivativesMatchCentralDifferencesOnEveryBranch)
   const Tca tca(three_thread(Kind::kExtension), softening());
   const double t = K(90.0);
   const double fb = tca.blocked_force(t);
-  struct Case {
-    const char* what;
-    double tension_N, elongation_m;
-    std::vector<Segment> segs;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<testing::ContactCase> cases = {
       {"open", fb + 0.05, tca.free_coil_elongation(fb + 0.05, t).elongation_m, {{1.0, t}}},
       {"open, off the law", fb + 0.05, 0.004, {{1.0, t}}},
       {"closed", fb - 0.05, 1e-4, {{1.0, t}}},
@@ -383,26 +379,7 @@ TEST(TcaContact, ContactResidualDerivativesMatchCentralDifferencesOnEveryBranch)
        0.002,
        {{0.5, K(40.0)}, {0.5, K(140.0)}}},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.what);
-    const ContactResidual r = contact_residual(tca, c.tension_N, c.elongation_m, c.segs);
-    const auto phi_F = [&](double F) {
-      return contact_residual(tca, F, c.elongation_m, c.segs).phi_N;
-    };
-    const auto phi_d = [&](double d) {
-      return contact_residual(tca, c.tension_N, d, c.segs).phi_N;
-    };
-    const auto phi_T = [&](double dT) {
-      std::vector<Segment> s = c.segs;
-      for (Segment& k : s) k.temperature_K += dT;
-      return contact_residual(tca, c.tension_N, c.elongation_m, s).phi_N;
-    };
-    const double kc = tca.contact_stiffness_N_m();
-    // Scales of the derivatives: 1 (per N), k_c (per m), k_c x 1e-4 m/K (per K).
-    EXPECT_NEAR(r.dphi_dF, central_difference(phi_F, c.tension_N, 1e-7), kFdRelTol);
-    EXPECT_NEAR(r.dphi_ddelta_N_m, central_difference(phi_d, c.elongation_m, 1e-9), kFdRelTol * kc);
-    EXPECT_NEAR(r.dphi_dT_N_K, central_difference(phi_T, 0.0, 1e-3), kFdRelTol * kc * 1e-4);
-  }
+  testing::expect_contact_residual_derivatives(tca, cases, kFdRelTol);
 }
 
 TEST(TcaContact, ResidualVanishesExactlyOnTheOpenLawAndOnTheClosedStrut) {
