@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/time_profile.hpp"
+#include "rod/obstacle.hpp"
 #include "rod/profile.hpp"
 #include "tca/tca.hpp"
 #include "tca/thermal.hpp"
@@ -60,6 +61,9 @@ struct Section {
   /// width (along body x), height (along body y) [m]; custom: area A [m^2], I_x (int y^2 dA),
   /// I_y (int x^2 dA), J (torsion constant) [m^4].
   Profile width_profile, height_profile, area_profile, I_x_profile, I_y_profile, J_profile;
+  /// custom: the radius of the circle it touches obstacles with (`contact_radius_m`); a
+  /// custom section without it cannot touch (docs/scenario-format.md "Obstacles").
+  std::optional<double> contact_radius_m;
   /// The properties at s (at a jump: the limit from `side`): a circle's I is pi d(s)^4 / 64,
   /// its J (and a rectangle's unless Saint-Venant) the polar moment I_x + I_y.
   SectionProperties properties_at(double s, Side side = Side::kRight) const;
@@ -226,6 +230,8 @@ struct RodModel {
   std::vector<Actuator> actuators;
   /// Body-fixed points both solvers report exactly at their s (`probes`, default none).
   std::vector<Probe> probes;
+  /// Rigid obstacles the rod may touch (`obstacles`, default none), in file order.
+  std::vector<Obstacle> obstacles;
 
   // --- Properties along s (docs/scenario-format.md "Profiles along the body"), all read from
   // the profiles of section, material and omega*. At a breakpoint where a profile jumps,

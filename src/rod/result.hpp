@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rod/model.hpp"
+#include "rod/obstacle.hpp"
 
 namespace tcasim::rod {
 
@@ -33,6 +34,12 @@ struct ActuatorResult {
 struct ProbeResult {
   std::string name;
   Eigen::Vector3d position_W_m = Eigen::Vector3d::Zero();  ///< p(s) + R(s) offset, world frame
+};
+
+/// A force and a moment (world frame; the moment about a stated point).
+struct Wrench {
+  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment_W_Nm = Eigen::Vector3d::Zero();
 };
 
 /// One solve's outcome, as written to a result file.
@@ -69,6 +76,12 @@ struct Result {
   /// The model's probes, evaluated by the solver exactly at their s (empty without probes or
   /// without a solution; written as `probes` only when non-empty).
   std::vector<ProbeResult> probes;
+  /// One entry per model obstacle, in file order (docs/scenario-format.md "Obstacles");
+  /// empty without obstacles (written as `contacts` only when the model has obstacles).
+  std::vector<ContactResult> contacts;
+  /// What the clamp applies to the rod (world frame, moment about the base point); written
+  /// as `base_reaction` when set. Base reaction + weight + tip loads + contacts balance.
+  std::optional<Wrench> base_reaction;
 };
 
 /// Serializes a result. Non-finite numbers are never written: a result holding one is

@@ -1,0 +1,126 @@
+#pragma once
+/// Rigid obstacles fixed in the world and the gap between them and the rod's section
+/// (docs/scenario-format.md "Obstacles", docs/conventions.md "Contact"). Both solvers take
+/// the gap, its normal and the touching point of the section from section_gap, so they
+/// solve the same contact problem and differ only in where they evaluate it.
+///
+/// The gap at s (the one definition both methods use):
+///   g(s) = d(p) - h(-n),
+/// d the obstacle's signed distance of the centerline point p = p(s) (negative inside),
+/// n = grad d the obstacle's outward unit normal there, h(u) = max over the section
+/// outline y of u . (R y) the support of the outline (circle of radius r in the section
+/// plane: r sqrt(1 - (u . t)^2), t = R e3; rectangle w x h: w/2 |u . R e1| + h/2 |u . R e2|,
+/// its corners included). It is the plane distance of the lowest outline point for a plane
+/// (exact for every section); for a cylinder, sphere or box the distance of the outline
+/// point nearest along n, exact for a circle whenever n lies in the section plane, which
+/// holds where a smooth tube touches a smooth obstacle, and otherwise the true outline gap
+/// to second order in (section size / obstacle radius).
+/// Its first variation under a body displacement dp and a world rotation dtheta:
+///   dg = n . dp + (c x n) . dtheta (+ c . dn, zero for a plane and for a circle with
+///   n in the section plane), c = the touching point's offset from p (world),
+/// so the contact force lambda n at p + c (lambda >= 0, the pressure's resultant) does the
+/// virtual work lambda dg: force lambda n, moment c x (lambda n) about p.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rod/profile.hpp"
+
+namespace tcasim::rod {
+
+struct RodModel;
+
+/// One rigid obstacle (world frame W, SI).
+struct Obstacle {
+  enum class Type { kPlane, kCylinder, kSphere, kBox };
+  std::string name;  ///< unique among the model's obstacles; names CSV columns
+  Type type = Type::kPlane;
+  /// plane: a point on it; cylinder: a point on its axis; sphere, box: the centre [m].
+  Eigen::Vector3d point_W_m = Eigen::Vector3d::Zero();
+  /// plane: the unit normal pointing into the free side; cylinder: the unit axis; else 0.
+  Eigen::Vector3d direction_W = Eigen::Vector3d::UnitZ();
+  double radius_m = 0.0;  ///< cylinder, sphere
+  Eigen::Vector3d half_extents_m = Eigen::Vector3d::Zero();  ///< box, along its own axes
+  Eigen::Matrix3d R_WO = Eigen::Matrix3d::Identity();  ///< box: columns are its axes in W
+  double friction = 0.0;  ///< Coulomb mu (dynamics, grasps); statics are frictionless
+
+  /// Signed distance of the world point x to the surface [m] (negative inside) and the
+  /// outward unit normal at the nearest surface point (the gradient of the distance; inside
+  /// a box, the normal of the nearest face; on a cylinder's axis or at a sphere's centre an
+  /// arbitrary unit vector normal to the axis).
+  struct Distance {
+    double distance_m = 0.0;
+    Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();
+  };
+  Distance distance(const Eigen::Vector3d& x_W_m) const;
+};
+
+const char* to_string(Obstacle::Type type);
+
+/// The outline a section touches with at one s: a circle (radius), a rectangle (width
+/// along body x, height along body y), or none (a custom section without contact_radius_m).
+struct ContactOutline {
+  enum class Kind { kNone, kCircle, kRectangle };
+  Kind kind = Kind::kNone;
+  double width_m = 0.0;   ///< circle: the diameter
+  double height_m = 0.0;  ///< circle: the diameter
+};
+
+/// The outline of `model`'s section at s: a circle of the local diameter, a rectangle of the
+/// local width and height, a custom section's section.contact_radius_m circle, or kNone.
+ContactOutline contact_outline_at(const RodModel& model, double s_m, Side side = Side::kRight);
+
+/// The gap of one section against one obstacle (the definition above).
+struct SectionGap {
+  double gap_m = 0.0;                                   ///< g; negative: penetration
+  Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();  ///< n, direction of the force on the rod
+  Eigen::Vector3d offset_W_m = Eigen::Vector3d::Zero();  ///< c, from p to the touching point
+};
+
+/// g, n and c of the section with outline `outline` at centerline point p_W_m and body
+/// frame R_WB against `obstacle`. kNone gives the centerline's own distance (c = 0).
+SectionGap section_gap(const Obstacle& obstacle, const ContactOutline& outline,
+                       const Eigen::Vector3d& p_W_m, const Eigen::Matrix3d& R_WB);
+
+// --- Results (both solvers; rod::Result::contacts) ---
+
+/// One contiguous part of the body in contact with an obstacle.
+struct ContactRegion {
+  double s0_m = 0.0, s1_m = 0.0;                          ///< s0 = s1 for a point contact
+  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();    ///< resultant on the rod
+};
+
+/// What one obstacle does to the rod in a solution.
+struct ContactResult {
+  std::string obstacle;                                   ///< Obstacle::name
+  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();    ///< resultant on the rod (world)
+  Eigen::Vector3d moment_W_Nm = Eigen::Vector3d::Zero();  ///< about the base point
+  std::vector<ContactRegion> regions;  ///< in increasing s; empty when not touched
+  double max_penetration_m = 0.0;      ///< max(0, -min g) over the points the solver checks
+  bool in_contact() const { return !regions.empty(); }
+};
+
+/// A solver's contact force at one of its contact points (a grid node, an FE node or
+/// quadrature point) against one obstacle.
+struct ContactSample {
+  double s_m = 0.0;
+  Eigen::Vector3d point_W_m = Eigen::Vector3d::Zero();  ///< where it acts: p(s) + c
+  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();  ///< lambda n (zero where open)
+  double gap_m = 0.0;
+};
+
+/// The result of one obstacle from a solver's samples (in increasing s): resultant, moment
+/// about base_W_m, regions = maximal runs of consecutive samples with a non-zero force (a
+/// lone sample is a point contact), max_penetration_m.
+ContactResult summarize_contact(const Obstacle& obstacle, const std::vector<ContactSample>& samples,
+                                const Eigen::Vector3d& base_W_m);
+
+/// Throws InputError unless the model's obstacles fit its reference configuration: no obstacle
+/// contains the base point (naming obstacles[i] and the base), no section of the stress-free
+/// shape penetrates an obstacle (naming obstacles[i] and the s, checked at every 1/1000 of
+/// L, at every breakpoint and at both ends), and every section can touch (a custom section
+/// needs section.contact_radius_m). RodModel readers call it after the body is known.
+void check_obstacles(const RodModel& model);
+
+}  // namespace tcasim::rod
