@@ -166,11 +166,14 @@ std::vector<SectionGap> section_gaps(const Obstacle& obstacle, const ContactOutl
         const Eigen::Vector3d& c1 = corners[(j + 1) % 4];
         const double t = nearest_on_segment(obstacle, p + c0, p + c1);
         // Strictly inside: a minimum at a corner is that corner's candidate already.
-        if (t > 1e-6 && t < 1.0 - 1e-6) {
-          const SectionGap g = point_gap(obstacle, p, c0 + t * (c1 - c0));
-          // Only a true interior minimum: the normal is then perpendicular to the edge (up to
-          // the search's resolution); at a kink of the box distance it is not, and a corner
-          // or a neighbouring candidate holds the contact.
+        const SectionGap g = point_gap(obstacle, p, c0 + t * (c1 - c0));
+        // A candidate of its own only where the edge bulges toward the obstacle: an interior
+        // minimum below both corners' gaps by more than 1e-6 of the edge. Where the distance
+        // is (nearly) constant along the edge (a face across a cylinder, on a box face) its
+        // two corners hold the line contact, and a third, dependent, candidate would make
+        // the solvers' systems singular.
+        const double corners_gap = std::min(out[j].gap_m, out[(j + 1) % 4].gap_m);
+        if (t > 1e-6 && t < 1.0 - 1e-6 && g.gap_m < corners_gap - 1e-6 * (c1 - c0).norm()) {
           edge = g;
         } else {
           edge.offset_W_m = t <= 0.5 ? c0 : c1;
