@@ -76,10 +76,12 @@ struct State {
   /// along the normal for a normal-only contact. Zero without a constraint.
   Eigen::Vector3d tip_reaction_W_N = Eigen::Vector3d::Zero();
   double load_factor = 0.0;  ///< lambda of the last accepted load step
-  /// With obstacles: the contact multiplier lambda >= 0 of every (free node, obstacle) pair
-  /// [N], index (k - 1) n_obstacles + o for node k = 1 .. nodes - 1 and obstacle o (the
-  /// normal force on the rod at that node). Empty without obstacles. It carries the contact
-  /// set of a warm start: a pair is active where lambda - k g > 0.
+  /// With obstacles: the contact multiplier lambda >= 0 of every contact pair [N]: per free
+  /// node k = 1 .. nodes - 1, per obstacle o, per contact candidate c of its section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle), index ((k - 1) n_obstacles + o)
+  /// n_candidates + c (the normal force on the rod at that candidate's touching point). Empty
+  /// without obstacles. It carries the contact set of a warm start: a pair is active where
+  /// lambda - k g > 0.
   std::vector<double> contact_lambda_N;
 };
 
@@ -199,17 +201,21 @@ class Discretization {
   }
   /// Number of held tip directions: 3 (pinned), 1 (normal-only contact) or 0.
   int constraint_count() const { return static_cast<int>(held_directions_W_.size()); }
-  /// Number of contact multipliers: (nodes - 1) x obstacles (0 without obstacles).
-  int contact_count() const {
-    return (node_count() - 1) * static_cast<int>(model_->obstacles.size());
+  /// Number of contact multipliers: (nodes - 1) x obstacles x candidates (0 without obstacles).
+  int contact_count() const { return (node_count() - 1) * contact_pairs_per_node(); }
+  /// Contact pairs of one node: obstacles x the section's candidates (rod::section_gaps).
+  int contact_pairs_per_node() const {
+    return static_cast<int>(model_->obstacles.size()) * contact_candidates_;
   }
+  /// The node of contact pair j (State::contact_lambda_N's order).
+  int contact_node(int j) const { return j / contact_pairs_per_node() + 1; }
   /// k = max(EA, GA)/L [N/m]: the contact rows k g are forces, as the tip-constraint rows.
   double contact_stiffness_N_m() const { return contact_stiffness_N_m_; }
   /// The contact set of `state`: per (node, obstacle) pair (State::contact_lambda_N's
   /// order), 1 where lambda - k g > 0 (the row k g = 0 holds), 0 where it is open (lambda = 0).
   std::vector<char> contact_set(const State& state) const;
-  /// One rod::ContactSample per free node against obstacle o: s, p + c, lambda n where lambda
-  /// > 0 (zero otherwise), the gap g.
+  /// One rod::ContactSample per free node and contact candidate against obstacle o: s, p + c,
+  /// lambda n where lambda > 0 (zero otherwise), the gap g.
   std::vector<rod::ContactSample> contact_samples(const State& state, int obstacle) const;
   /// What the clamp applies to the rod (world frame, moment about the base point) at load
   /// factor lambda: the base node's rows of the internal forces of the first element minus
@@ -295,18 +301,20 @@ class Discretization {
   /// Sets the tensions of tension drives to lambda times their value in `loads`.
   void apply_prescribed_tensions(const LoadCase& loads, State& state, double lambda) const;
 
-  /// One (node, obstacle) pair at `state`: the gap g [m] and the generalized direction G =
-  /// (n, R^T (c x n)) of its force on the node's dofs (force rows world, moment rows in the
-  /// node's material frame; the force is lambda G). With `dG`, `dg`: their derivatives in
-  /// the node's increments (dp, dtheta material, as retract), by central differences of
-  /// rod::section_gap.
+  /// Contact pair j (State::contact_lambda_N's order) at `state`: the gap g [m] and the
+  /// generalized direction G = (n, R^T (c x n)) of its force on the node's dofs (force rows
+  /// world, moment rows in the node's material frame; the force is lambda G). With `dG`,
+  /// `dg`: their derivatives in the node's increments (dp, dtheta material, as retract), by
+  /// central differences of rod::section_gaps (steps 1e-7 L and 1e-5 rad); where the
+  /// candidate does not exist on both sides of a step (g = +infinity: a rectangle's edge
+  /// candidate) dg is the first variation n . dp + (c x n) . dtheta_W and dG is zero. A
+  /// candidate that does not exist has g = +infinity and G = 0.
   struct ContactPair {
     double gap_m = 0.0;
     Eigen::Matrix<double, 6, 1> G = Eigen::Matrix<double, 6, 1>::Zero();
     rod::SectionGap section;  ///< g, n, c of rod::section_gap
   };
-  ContactPair contact_pair(const State& state, int node, int obstacle,
-                           Eigen::Matrix<double, 6, 6>* dG = nullptr,
+  ContactPair contact_pair(const State& state, int j, Eigen::Matrix<double, 6, 6>* dG = nullptr,
                            Eigen::Matrix<double, 1, 6>* dg = nullptr) const;
 
  private:
@@ -327,6 +335,7 @@ class Discretization {
   double constraint_stiffness_N_m_ = 0.0;      // k_c = max(EA, GA)/L: constraint rows in N
   double contact_stiffness_N_m_ = 0.0;         // k = max(EA, GA)/L: contact rows in N
   std::vector<rod::ContactOutline> outlines_;  // per node: its section's contact outline
+  int contact_candidates_ = 0;  // contact candidates per section (rod::contact_candidate_count)
   // K_nu, K_omega and omega* at s = 0: a uniform body's at every s, evaluated once.
   rod::SectionStiffness base_stiffness_;
   Eigen::Vector3d base_omega_star_ = Eigen::Vector3d::Zero();

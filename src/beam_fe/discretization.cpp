@@ -182,6 +182,8 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
             model, s, e + 1 == elements_ && a == order_ ? rod::Side::kLeft : rod::Side::kRight));
       }
     }
+    // The section's shape (and so its outline's kind) is the same at every s.
+    contact_candidates_ = rod::contact_candidate_count(outlines_.back().kind);
   }
 }
 
@@ -418,7 +420,7 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
   const int n_tca = static_cast<int>(tca_actuators_.size());
   const int tca_end = free_dofs + n_tca;
   const int contact_begin = tca_end + constraint_count();
-  const int n_obs = static_cast<int>(model_->obstacles.size());
+  const int per_node = contact_pairs_per_node();
   const int tip_pos = free_dofs - 6;
   std::vector<int> first_row(free_dofs), range_rows(free_dofs);
   std::vector<int> outer(n + 1, 0);
@@ -431,7 +433,7 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
       first_row[j] = 6 * (lo - 1);
       range_rows[j] = 6 * (hi - lo + 1);
       count = range_rows[j] + n_tca + (j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0) +
-              n_obs;
+              per_node;
     } else if (j < tca_end) {
       count = tca_end;
     } else if (j < contact_begin) {
@@ -453,13 +455,13 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
       if (j >= tip_pos && j < tip_pos + 3) {
         for (int c = tca_end; c < contact_begin; ++c) *it++ = c;
       }
-      for (int o = 0; o < n_obs; ++o) *it++ = contact_begin + (j / 6) * n_obs + o;
+      for (int o = 0; o < per_node; ++o) *it++ = contact_begin + (j / 6) * per_node + o;
     } else if (j < tca_end) {
       for (int i = 0; i < tca_end; ++i) *it++ = i;
     } else if (j < contact_begin) {
       for (int i = 0; i < 3; ++i) *it++ = tip_pos + i;
     } else {
-      const int node_row = 6 * ((j - contact_begin) / n_obs);
+      const int node_row = 6 * ((j - contact_begin) / per_node);
       for (int i = 0; i < 6; ++i) *it++ = node_row + i;
       *it++ = j;
     }
@@ -498,9 +500,10 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
   }
   contact_slots_.clear();
   node_block_slots_.clear();
-  if (n_obs > 0) {
+  if (per_node > 0) {
     for (int c = contact_begin; c < n; ++c) {
-      const int node_col = 6 * ((c - contact_begin) / n_obs), o = (c - contact_begin) % n_obs;
+      const int node_col = 6 * ((c - contact_begin) / per_node);
+      const int o = (c - contact_begin) % per_node;
       for (int i = 0; i < 6; ++i) {
         const int j = node_col + i;  // the k g row's entry in the node's column j
         const int held = j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0;
@@ -532,7 +535,7 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
       assert(constraint_slots_[6 * (c - tca_end) + 3 + i] == slot(K, tip_pos + i, c));
     }
   for (int c = contact_begin; c < n; ++c) {
-    const int node_col = 6 * ((c - contact_begin) / n_obs);
+    const int node_col = 6 * ((c - contact_begin) / per_node);
     const int* cs = &contact_slots_[13 * static_cast<std::size_t>(c - contact_begin)];
     for (int i = 0; i < 6; ++i) {
       assert(cs[i] == slot(K, c, node_col + i));
@@ -540,7 +543,7 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
     }
     assert(cs[12] == slot(K, c, c));
   }
-  for (int k = 1; k < nodes && n_obs > 0; ++k)
+  for (int k = 1; k < nodes && per_node > 0; ++k)
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
         assert(node_block_slots_[36 * (k - 1) + 6 * i + j] ==
@@ -629,15 +632,14 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
   // (r = internal - external - contact), and its row is the complementarity function
   // min(lambda, k g): k g where lambda - k g > 0 (active), lambda elsewhere, with its
   // generalized derivative as tangent; or (kOpen) lambda for every pair.
-  const int n_obs = static_cast<int>(model.obstacles.size());
   const int first_contact = first_constraint + constraint_count();
   Eigen::Matrix<double, 6, 6> dG;
   Eigen::Matrix<double, 1, 6> dg;
   for (int j = 0; j < contact_count(); ++j) {
-    const int k = j / n_obs + 1, o = j % n_obs;
+    const int k = contact_node(j);
     const double lambda_N = state.contact_lambda_N[static_cast<std::size_t>(j)];
     const ContactPair pair =
-        contact_pair(state, k, o, tangent ? &dG : nullptr, tangent ? &dg : nullptr);
+        contact_pair(state, j, tangent ? &dG : nullptr, tangent ? &dg : nullptr);
     const double kg = contact_stiffness_N_m_ * pair.gap_m;
     const bool active = rows == ContactRows::kComplementarity && lambda_N - kg > 0.0;
     const int node = 6 * (k - 1);
@@ -659,28 +661,39 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
   return r;
 }
 
-Discretization::ContactPair Discretization::contact_pair(const State& state, int node, int obstacle,
+Discretization::ContactPair Discretization::contact_pair(const State& state, int j,
                                                          Eigen::Matrix<double, 6, 6>* dG,
                                                          Eigen::Matrix<double, 1, 6>* dg) const {
-  const rod::Obstacle& obs = model_->obstacles[static_cast<std::size_t>(obstacle)];
+  const int node = contact_node(j);
+  const int in_node = j % contact_pairs_per_node();
+  const rod::Obstacle& obs =
+      model_->obstacles[static_cast<std::size_t>(in_node / contact_candidates_)];
+  const std::size_t candidate = static_cast<std::size_t>(in_node % contact_candidates_);
   const rod::ContactOutline& outline = outlines_[static_cast<std::size_t>(node)];
   auto evaluate = [&](const Vector3d& p, const Matrix3d& R) {
     ContactPair out;
-    out.section = rod::section_gap(obs, outline, p, R);
+    out.section = rod::section_gaps(obs, outline, p, R)[candidate];
     out.gap_m = out.section.gap_m;
-    out.G.head<3>() = out.section.normal_W;
-    out.G.tail<3>() = R.transpose() * out.section.offset_W_m.cross(out.section.normal_W);
+    if (std::isfinite(out.gap_m)) {
+      out.G.head<3>() = out.section.normal_W;
+      out.G.tail<3>() = R.transpose() * out.section.offset_W_m.cross(out.section.normal_W);
+    }
     return out;
   };
   const Vector3d& p = state.p_W_m[static_cast<std::size_t>(node)];
   const Matrix3d R = state.q_WB[static_cast<std::size_t>(node)].toRotationMatrix();
   ContactPair pair = evaluate(p, R);
   if (dG == nullptr && dg == nullptr) return pair;
+  if (dG) dG->setZero();
+  if (dg) dg->setZero();
+  if (!std::isfinite(pair.gap_m)) return pair;
   // Central differences over the node's increments (dp world, dtheta material: R exp(dtheta)).
   // Steps: 1e-7 L in position and 1e-5 rad in rotation keep the truncation error (step /
   // curvature radius of the obstacle or outline)^2 and the round-off eps |p| / step both
   // near 1e-8 of the derivatives for section and obstacle sizes down to ~1e-3 L.
   const double dp = 1e-7 * model_->length_m, dth = 1e-5;
+  Eigen::Matrix<double, 6, 6> dG_fd;
+  Eigen::Matrix<double, 1, 6> dg_fd;
   for (int i = 0; i < 6; ++i) {
     Vector3d p_plus = p, p_minus = p;
     Matrix3d R_plus = R, R_minus = R;
@@ -695,17 +708,23 @@ Discretization::ContactPair Discretization::contact_pair(const State& state, int
       R_minus = R * so3::exp(-dth * Vector3d::Unit(i - 3));
     }
     const ContactPair plus = evaluate(p_plus, R_plus), minus = evaluate(p_minus, R_minus);
-    if (dG) dG->col(i) = (plus.G - minus.G) / (2.0 * step);
-    if (dg) (*dg)[i] = (plus.gap_m - minus.gap_m) / (2.0 * step);
+    if (!std::isfinite(plus.gap_m) || !std::isfinite(minus.gap_m)) {
+      // A candidate at the edge of its existence: its first variation, no force tangent.
+      if (dg) *dg = pair.G.transpose();
+      return pair;
+    }
+    dG_fd.col(i) = (plus.G - minus.G) / (2.0 * step);
+    dg_fd[i] = (plus.gap_m - minus.gap_m) / (2.0 * step);
   }
+  if (dG) *dG = dG_fd;
+  if (dg) *dg = dg_fd;
   return pair;
 }
 
 std::vector<char> Discretization::contact_set(const State& state) const {
-  const int n_obs = static_cast<int>(model_->obstacles.size());
   std::vector<char> set(static_cast<std::size_t>(contact_count()), 0);
   for (int j = 0; j < contact_count(); ++j) {
-    const double kg = contact_stiffness_N_m_ * contact_pair(state, j / n_obs + 1, j % n_obs).gap_m;
+    const double kg = contact_stiffness_N_m_ * contact_pair(state, j).gap_m;
     set[static_cast<std::size_t>(j)] =
         state.contact_lambda_N[static_cast<std::size_t>(j)] - kg > 0.0;
   }
@@ -714,21 +733,22 @@ std::vector<char> Discretization::contact_set(const State& state) const {
 
 std::vector<rod::ContactSample> Discretization::contact_samples(const State& state,
                                                                 int obstacle) const {
-  const int n_obs = static_cast<int>(model_->obstacles.size());
   std::vector<rod::ContactSample> samples;
   for (int k = 1; k < node_count(); ++k) {
-    const ContactPair pair = contact_pair(state, k, obstacle);
-    const double lambda_N =
-        state.contact_lambda_N.empty()
-            ? 0.0
-            : state.contact_lambda_N[static_cast<std::size_t>((k - 1) * n_obs + obstacle)];
-    rod::ContactSample sample;
-    sample.s_m = state.s_m[static_cast<std::size_t>(k)];
-    sample.point_W_m = state.p_W_m[static_cast<std::size_t>(k)] + pair.section.offset_W_m;
-    sample.force_W_N =
-        lambda_N > 0.0 ? Vector3d(lambda_N * pair.section.normal_W) : Vector3d::Zero();
-    sample.gap_m = pair.gap_m;
-    samples.push_back(sample);
+    for (int c = 0; c < contact_candidates_; ++c) {
+      const int j = (k - 1) * contact_pairs_per_node() + obstacle * contact_candidates_ + c;
+      const ContactPair pair = contact_pair(state, j);
+      const double lambda_N = state.contact_lambda_N.empty()
+                                  ? 0.0
+                                  : state.contact_lambda_N[static_cast<std::size_t>(j)];
+      rod::ContactSample sample;
+      sample.s_m = state.s_m[static_cast<std::size_t>(k)];
+      sample.point_W_m = state.p_W_m[static_cast<std::size_t>(k)] + pair.section.offset_W_m;
+      sample.force_W_N =
+          lambda_N > 0.0 ? Vector3d(lambda_N * pair.section.normal_W) : Vector3d::Zero();
+      sample.gap_m = pair.gap_m;
+      samples.push_back(sample);
+    }
   }
   return samples;
 }

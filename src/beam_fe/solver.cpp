@@ -311,7 +311,6 @@ bool solve_lcp(const Eigen::MatrixXd& W, const VectorXd& q, double eps_w, std::v
 bool contact_step(const Discretization& disc, const Options& options, const State& st,
                   const VectorXd& r_open, LinearSystem& linear, VectorXd& dx, std::string& why) {
   const int n = disc.dof_count(), m = disc.contact_count(), first = n - m;
-  const int n_obs = static_cast<int>(disc.model().obstacles.size());
   VectorXd dx0;
   if (!linear.solve(-r_open, dx0) || !dx0.allFinite()) {
     why = "the linear solve failed (singular or not finite)";
@@ -320,8 +319,8 @@ bool contact_step(const Discretization& disc, const Options& options, const Stat
   VectorXd b(m);
   std::vector<Eigen::Matrix<double, 1, 6>> D(static_cast<std::size_t>(m));
   for (int j = 0; j < m; ++j) {
-    const int node = j / n_obs + 1;
-    const double g = disc.contact_pair(st, node, j % n_obs, nullptr, &D[j]).gap_m;
+    const int node = disc.contact_node(j);
+    const double g = disc.contact_pair(st, j, nullptr, &D[j]).gap_m;
     b[j] = g + D[j].transpose().dot(dx0.segment<6>(6 * (node - 1)));
   }
   // Feasibility tolerance of a linearized gap: a tenth of the convergence test's absolute
@@ -353,7 +352,7 @@ bool contact_step(const Discretization& disc, const Options& options, const Stat
     VectorXd q(c);
     std::vector<char> closed(static_cast<std::size_t>(c));
     for (int a = 0; a < c; ++a) {
-      const int i = pairs[a], node_i = 6 * (i / n_obs);
+      const int i = pairs[a], node_i = 6 * (disc.contact_node(i) - 1);
       q[a] = b[i];
       closed[a] = st.contact_lambda_N[i] > 0.0;
       for (int c2 = 0; c2 < c; ++c2)
@@ -366,7 +365,7 @@ bool contact_step(const Discretization& disc, const Options& options, const Stat
     bool grown = false;
     for (int j = 0; j < m; ++j) {
       if (in[j]) continue;
-      const int node_j = 6 * (j / n_obs);
+      const int node_j = 6 * (disc.contact_node(j) - 1);
       double w = b[j];
       for (int a = 0; a < c; ++a) w += D[j].transpose().dot(x[pairs[a]].segment<6>(node_j)) * mu[a];
       if (w < -eps_w) {

@@ -358,9 +358,15 @@ TEST(BeamFeContact, SquareSectionRolledOnItsEdgeTouchesThePlaneWithItsCorner) {
   const Solver solver(m, opt);
   const std::vector<rod::ContactSample> samples =
       solver.discretization().contact_samples(run.state, 0);
-  const rod::ContactSample& tip = samples.back();
+  // Eight candidates per section (rod::section_gaps): one of them, at the tip, carries force.
+  ASSERT_EQ(samples.size(), 8u * (solver.discretization().node_count() - 1));
+  std::vector<rod::ContactSample> loaded;
+  for (const rod::ContactSample& smp : samples)
+    if (smp.force_W_N.norm() > 0.0) loaded.push_back(smp);
+  ASSERT_EQ(loaded.size(), 1u);
+  const rod::ContactSample& tip = loaded[0];
+  EXPECT_EQ(tip.s_m, m.length_m);
   ASSERT_GT(tip.force_W_N.z(), 0.0);
-  for (std::size_t k = 0; k + 1 < samples.size(); ++k) EXPECT_EQ(samples[k].force_W_N.norm(), 0.0);
   // The touching point is the corner (-a/2, -a/2) of the tip section.
   const Matrix3d R_tip = run.state.q_WB.back().toRotationMatrix();
   const Vector3d corner_B = R_tip.transpose() * (tip.point_W_m - run.state.p_W_m.back());
@@ -378,6 +384,53 @@ TEST(BeamFeContact, SquareSectionRolledOnItsEdgeTouchesThePlaneWithItsCorner) {
               run.summary.iterations);
   EXPECT_NEAR(tip.force_W_N.z(), P - P_on, 2.0 * slope * slope * P);
   // The clamp carries the torsion of the corner force: about world x it is -(c x F)_x.
+  expect_global_balance(m, solver, run.result, run.state, rod::Loads::from_model(m));
+}
+
+TEST(BeamFeContact, HeavySquareRodLyingOnAFaceIsHeldByItsTwoLowerCorners) {
+  // A square steel rod (side 2 mm), face down, 2 mm above the floor under its weight: the
+  // same small-slope closed form as the round rod (B = E a^4 / 12); each node on the floor is
+  // held by the two corners of its lower face (rod::section_gaps), which share the load
+  // equally (no torsion: the rod's plane of symmetry is vertical).
+  const double side = 2e-3, H = 2e-3;
+  rod::RodModel m = testing::square_rod(1.0, side, kSteelE_Pa, kSteelPoisson, kSteelDensity);
+  m.R_WB0 = horizontal_rod(side, 0.0).R_WB0;
+  m.base_position_W_m = Vector3d(0.0, 0.0, H + 0.5 * side);
+  m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
+  m.obstacles = {floor_plane()};
+  const Options opt = options(64);
+  const ContactRun run = solve_model(m, opt);
+  ASSERT_TRUE(run.summary.converged()) << run.summary.message;
+  const double B = m.bending_torsion_stiffness()[0];
+  const double q = -m.weight_per_length_W_N_m().z();
+  const HeavyRodOnFloor cf = heavy_rod_closed_form(B, q, H);
+  const double h = m.length_m / opt.elements;
+  const double allowed = cf.max_slope * cf.max_slope + std::pow(h / cf.free_span_m, 2) +
+                         (2 * opt.elements + 1) * run.summary.residual_inf / (q * cf.free_span_m);
+  const double force_error = run.result.base_reaction->force_W_N.z() / cf.clamp_force_N - 1.0;
+  const double moment_error = -run.result.base_reaction->moment_W_Nm.y() / cf.clamp_moment_Nm - 1.0;
+  std::printf("  square rod: clamp force err %+.3e, moment err %+.3e (bound %.1e), %d iterations\n",
+              force_error, moment_error, allowed, run.summary.iterations);
+  EXPECT_LT(std::abs(force_error), allowed);
+  EXPECT_LT(std::abs(moment_error), allowed);
+  const Solver solver(m, opt);
+  const std::vector<rod::ContactSample> samples =
+      solver.discretization().contact_samples(run.state, 0);
+  const LoadCase lc = solver.discretization().load_case(rod::Loads::from_model(m));
+  const double row_tolerance =
+      opt.tolerance_abs +
+      opt.tolerance_rel * solver.discretization().residual_scale(run.state, lc, 1.0) +
+      solver.discretization().round_off_floor().force;
+  int loaded_nodes = 0;
+  for (std::size_t k = 0; k < samples.size(); k += 8) {
+    // Corners (+x,+y), (-x,+y), (-x,-y), (+x,-y): body -y is down, so (-x,-y) and (+x,-y).
+    const double f_left = samples[k + 2].force_W_N.z(), f_right = samples[k + 3].force_W_N.z();
+    for (const int c : {0, 1, 4, 5, 6, 7}) EXPECT_EQ(samples[k + c].force_W_N.norm(), 0.0);
+    if (f_left + f_right == 0.0) continue;
+    ++loaded_nodes;
+    EXPECT_NEAR(f_left, f_right, 2.0 * row_tolerance) << "s = " << samples[k].s_m;
+  }
+  EXPECT_GT(loaded_nodes, opt.elements / 2);
   expect_global_balance(m, solver, run.result, run.state, rod::Loads::from_model(m));
 }
 
@@ -414,10 +467,9 @@ TEST(BeamFeContact, ContactTangentMatchesFiniteDifferencesForActiveAndOpenPairs)
             .normalized();
   }
   st.p_W_m[3] += Vector3d(0.0, 0.0, 0.06);  // node 3 inside the ball
-  const int n_obs = 2;
   int active = 0, open = 0;
   for (int j = 0; j < disc.contact_count(); ++j) {
-    const double g = disc.contact_pair(st, j / n_obs + 1, j % n_obs).gap_m;
+    const double g = disc.contact_pair(st, j).gap_m;
     st.contact_lambda_N[j] = g < 0.0 ? 0.5 + 0.1 * j : (j == 1 ? -0.3 : 0.0);
     const double margin = st.contact_lambda_N[j] - disc.contact_stiffness_N_m() * g;
     ASSERT_GT(std::abs(margin), 1e-3) << "pair " << j;
