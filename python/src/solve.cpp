@@ -551,7 +551,7 @@ the solver runs.)") +
         for (std::size_t i = 0; i < model.obstacles.size(); ++i) {
           for (int c = 0; c < 3; ++c) {
             column(fmt::format("{}_force_{}_N", model.obstacles[i].name, "xyz"[c]),
-                   [i, c](const rod::Result& r) {
+                   [i, c, nan](const rod::Result& r) {
                      return i < r.contacts.size() ? r.contacts[i].force_W_N[c] : nan;
                    });
           }

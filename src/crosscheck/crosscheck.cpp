@@ -151,8 +151,19 @@ ResultDifference difference(const rod::Result& a, const rod::Result& b) {
     throw std::invalid_argument(
         fmt::format("difference: {} vs {} actuators", a.actuators.size(), b.actuators.size()));
   }
+  if (a.contacts.size() != b.contacts.size()) {
+    throw std::invalid_argument(
+        fmt::format("difference: {} vs {} obstacles", a.contacts.size(), b.contacts.size()));
+  }
   ResultDifference d;
   d.tip_m = (a.tip_position_W_m - b.tip_position_W_m).norm();
+  for (std::size_t i = 0; i < a.contacts.size(); ++i) {
+    d.max_contact_N =
+        std::max(d.max_contact_N, (a.contacts[i].force_W_N - b.contacts[i].force_W_N).norm());
+  }
+  d.base_force_N = a.base_reaction && b.base_reaction
+                       ? (a.base_reaction->force_W_N - b.base_reaction->force_W_N).norm()
+                       : kNaN;
   const double mid_s = 0.5 * (a.centerline_s_m.empty() ? 0.0 : a.centerline_s_m.back());
   try {
     d.mid_m = (centerline_point(a, mid_s) - centerline_point(b, mid_s)).norm();
@@ -344,19 +355,24 @@ std::vector<CrossCheckRow> cross_check(const rod::RodModel& model, const Referen
 std::string crosscheck_csv_header() {
   return "scenario,elements,order,tip_diff_m,tip_diff_over_L,rotation_diff_rad,max_tension_diff_N,"
          "cosserat_time_s,fe_time_s,converged,mid_diff_m,tip_reaction_diff_N,reference_steps,"
-         "reference_self_error_m,cvode_diff_m,max_elongation_diff_m\n";
+         "reference_self_error_m,cvode_diff_m,max_elongation_diff_m,max_contact_force_diff_N,"
+         "base_force_diff_N\n";
 }
 
 std::string crosscheck_csv_row(const CrossCheckRow& row, const Reference& reference,
                                int reference_steps) {
   return fmt::format(
-      "{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e}\n",
+      "{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{},{:.6e},{},{:.6e},{:."
+      "6e},"
+      "{}\n",
       row.scenario, row.elements, row.order, row.diff.tip_m, row.diff.tip_m / row.length_m,
       row.diff.rotation_rad, row.diff.max_tension_N, row.cosserat_time_s, row.fe_time_s,
       row.converged ? 1 : 0, row.diff.mid_m, row.diff.reaction_N, reference_steps,
       reference.self_error_m,
       reference.cvode ? fmt::format("{:.6e}", reference.cvode_difference_m) : std::string(),
-      row.diff.max_elongation_m);
+      row.diff.max_elongation_m, row.diff.max_contact_N,
+      std::isfinite(row.diff.base_force_N) ? fmt::format("{:.6e}", row.diff.base_force_N)
+                                           : std::string());
 }
 
 std::string convergence_csv_header() {

@@ -59,8 +59,12 @@ struct ResultDifference {
   double rotation_rad = 0.0;      ///< |log(R_a(L)^T R_b(L))| [rad]
   double max_tension_N = 0.0;     ///< max over actuators of |T_a - T_b| (one string) [N]
   double max_elongation_m = 0.0;  ///< max over actuators of |e_a - e_b| (one string) [m]
+  /// max over obstacles of |F_a - F_b| of the contact resultants [N] (0 without obstacles)
+  double max_contact_N = 0.0;
+  /// |base reaction force a - b| [N] (NaN when either result lacks it)
+  double base_force_N = 0.0;
 };
-/// a - b as above; throws std::invalid_argument if the actuator counts differ.
+/// a - b as above; throws std::invalid_argument if the actuator or obstacle counts differ.
 ResultDifference difference(const rod::Result& a, const rod::Result& b);
 
 /// One solve with its outcome and wall time.

@@ -3,6 +3,7 @@
 #include <ostream>
 #include <utility>
 
+#include "common/error.hpp"
 #include "method/dynamics.hpp"
 
 namespace tcasim::method {
@@ -62,6 +63,14 @@ const char* name(const DynamicOptions& options) {
 }
 
 DynamicSolver::DynamicSolver(const rod::RodModel& model, const DynamicOptions& options) {
+  // Contact in dynamics (with friction and impacts) is not modelled yet: refuse rather than
+  // let the rod pass through what it would touch.
+  if (!model.obstacles.empty()) {
+    throw DomainError(fmt::format(
+        "rod dynamics: obstacles are not supported in dynamics yet (the scenario has {}, "
+        "first \"{}\"); solve the statics with tcasim solve or sweep",
+        model.obstacles.size(), model.obstacles.front().name));
+  }
   if (const auto* o = std::get_if<cosserat::DynamicsOptions>(&options)) {
     impl_.reset(
         new Impl{model, std::variant<Shooting, Fe>(std::in_place_type<Shooting>, model, *o)});

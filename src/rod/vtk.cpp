@@ -28,6 +28,54 @@ std::string string_array(const std::string& name, const std::vector<std::string>
 }
 
 /// CSV field: quoted when it holds a comma, a quote or a line break.
+/// The parts of one VTK XML PolyData piece whose cells are all lines or all polygons.
+struct PolyDataPiece {
+  std::string field_data;  ///< string_array entries
+  std::size_t points = 0, cells = 0;
+  bool polygons = false;   ///< cells are polygons (Polys), else polylines (Lines)
+  std::string point_data;  ///< its <PointData ...> block, or empty
+  std::string cell_data;   ///< its <CellData ...> block
+  std::string coords, connectivity, offsets;
+};
+
+/// An ASCII DataArray of `type` named `name` holding `values` (space-separated).
+std::string data_array(const char* type, const char* name, const std::string& values) {
+  return fmt::format("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n          ",
+                     type, name) +
+         values + "\n        </DataArray>\n";
+}
+
+std::string polydata_document(const PolyDataPiece& piece) {
+  std::string doc;
+  doc += "<?xml version=\"1.0\"?>\n";
+  doc +=
+      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n";
+  doc += "  <PolyData>\n";
+  doc += "    <FieldData>\n" + piece.field_data + "    </FieldData>\n";
+  doc += fmt::format(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+      "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+      piece.points, piece.polygons ? 0 : piece.cells, piece.polygons ? piece.cells : 0);
+  doc += piece.point_data + piece.cell_data;
+  doc += "      <Points>\n";
+  doc +=
+      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">\n" +
+      piece.coords;
+  doc += "        </DataArray>\n";
+  doc += "      </Points>\n";
+  const char* cells = piece.polygons ? "Polys" : "Lines";
+  doc += fmt::format("      <{}>\n", cells);
+  doc += data_array("Int64", "connectivity", piece.connectivity);
+  doc += data_array("Int64", "offsets", piece.offsets);
+  doc += fmt::format("      </{}>\n", cells);
+  doc += "    </Piece>\n";
+  doc += "  </PolyData>\n";
+  doc += "</VTKFile>\n";
+  return doc;
+}
+
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string out = "\"";
@@ -103,54 +151,20 @@ std::string vtp_document(const RodModel& model, const Result& result) {
     cell_ids += fmt::format("{} ", c.actuator_id);
   }
 
-  std::string doc;
-  doc += "<?xml version=\"1.0\"?>\n";
-  doc +=
-      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n";
-  doc += "  <PolyData>\n";
-  doc += "    <FieldData>\n";
-  doc += string_array("scenario", {result.scenario});
-  doc += string_array("method", {result.method});
-  doc += string_array("curve_names", names);
-  doc += "    </FieldData>\n";
-  doc += fmt::format(
-      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
-      "NumberOfStrips=\"0\" "
-      "NumberOfPolys=\"0\">\n",
-      points, lines);
-  doc += "      <PointData Scalars=\"s_m\">\n";
-  doc += "        <DataArray type=\"Float64\" Name=\"s_m\" format=\"ascii\">\n          " +
-         s_values + "\n";
-  doc += "        </DataArray>\n";
-  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " +
-         ids + "\n";
-  doc += "        </DataArray>\n";
-  doc += "      </PointData>\n";
-  doc += "      <CellData Scalars=\"actuator_id\">\n";
-  doc += "        <DataArray type=\"Int32\" Name=\"actuator_id\" format=\"ascii\">\n          " +
-         cell_ids + "\n";
-  doc += "        </DataArray>\n";
-  doc += "      </CellData>\n";
-  doc += "      <Points>\n";
-  doc +=
-      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-      "format=\"ascii\">\n" +
-      coords;
-  doc += "        </DataArray>\n";
-  doc += "      </Points>\n";
-  doc += "      <Lines>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " +
-         connectivity + "\n";
-  doc += "        </DataArray>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " +
-         offsets + "\n";
-  doc += "        </DataArray>\n";
-  doc += "      </Lines>\n";
-  doc += "    </Piece>\n";
-  doc += "  </PolyData>\n";
-  doc += "</VTKFile>\n";
-  return doc;
+  PolyDataPiece piece;
+  piece.field_data = string_array("scenario", {result.scenario}) +
+                     string_array("method", {result.method}) + string_array("curve_names", names);
+  piece.points = points;
+  piece.cells = lines;
+  piece.point_data = "      <PointData Scalars=\"s_m\">\n" +
+                     data_array("Float64", "s_m", s_values) +
+                     data_array("Int32", "actuator_id", ids) + "      </PointData>\n";
+  piece.cell_data = "      <CellData Scalars=\"actuator_id\">\n" +
+                    data_array("Int32", "actuator_id", cell_ids) + "      </CellData>\n";
+  piece.coords = coords;
+  piece.connectivity = connectivity;
+  piece.offsets = offsets;
+  return polydata_document(piece);
 }
 
 void write_vtp(const RodModel& model, const Result& result, const std::string& path) {
@@ -291,44 +305,18 @@ std::string obstacles_vtp_document(const RodModel& model, const Result& result) 
     points += surface.points.size();
     polygons += surface.polygons.size();
   }
-  std::string doc;
-  doc += "<?xml version=\"1.0\"?>\n";
-  doc +=
-      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n";
-  doc += "  <PolyData>\n";
-  doc += "    <FieldData>\n";
-  doc += string_array("scenario", {result.scenario});
-  doc += string_array("obstacle_names", names);
-  doc += "    </FieldData>\n";
-  doc += fmt::format(
-      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
-      "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
-      points, polygons);
-  doc += "      <CellData Scalars=\"obstacle_id\">\n";
-  doc += "        <DataArray type=\"Int32\" Name=\"obstacle_id\" format=\"ascii\">\n          " +
-         ids + "\n";
-  doc += "        </DataArray>\n";
-  doc += "      </CellData>\n";
-  doc += "      <Points>\n";
-  doc +=
-      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-      "format=\"ascii\">\n" +
-      coords;
-  doc += "        </DataArray>\n";
-  doc += "      </Points>\n";
-  doc += "      <Polys>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " +
-         connectivity + "\n";
-  doc += "        </DataArray>\n";
-  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " +
-         offsets + "\n";
-  doc += "        </DataArray>\n";
-  doc += "      </Polys>\n";
-  doc += "    </Piece>\n";
-  doc += "  </PolyData>\n";
-  doc += "</VTKFile>\n";
-  return doc;
+  PolyDataPiece piece;
+  piece.field_data =
+      string_array("scenario", {result.scenario}) + string_array("obstacle_names", names);
+  piece.points = points;
+  piece.cells = polygons;
+  piece.polygons = true;
+  piece.cell_data = "      <CellData Scalars=\"obstacle_id\">\n" +
+                    data_array("Int32", "obstacle_id", ids) + "      </CellData>\n";
+  piece.coords = coords;
+  piece.connectivity = connectivity;
+  piece.offsets = offsets;
+  return polydata_document(piece);
 }
 
 std::string shape_csv_document(const RodModel& model, const Result& result) {
