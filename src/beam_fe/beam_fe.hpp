@@ -17,10 +17,11 @@
 /// the world frame (virtual work M_e . dtheta_W, i.e. m(L) = M_e as in the shooting solver).
 ///
 /// Obstacles (rod::RodModel::obstacles, rod/obstacle.hpp) touch the mesh nodes: every free
-/// node against every obstacle has a contact force lambda n at p + c (rod::section_gap) with
-/// a multiplier lambda >= 0 as an unknown, and the complementarity row min(lambda, k g) = 0
-/// (k = max(EA, GA)/L) solved by semismooth Newton, i.e. a primal-dual active set
-/// iteration (docs/conventions.md "Contact in the FE").
+/// node against every obstacle and contact candidate of its section (rod::section_gaps) has
+/// a contact force lambda n at p + c with a multiplier lambda >= 0 as an unknown and the
+/// complementarity row min(lambda, k g) = 0 (k = max(EA, GA)/L); each Newton step solves the
+/// contact problem linearized at the iterate exactly, so the contact set (primal-dual active
+/// set) is updated every iteration (docs/conventions.md "Contact in the FE").
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
@@ -390,8 +391,11 @@ class Solver {
 /// with full steps (backtracking only out of the model's domain); once the residual contracts by
 /// 1e-2 per iteration the last factorization is reused (chord steps) until the contraction
 /// degrades. KLU pivots once and then refactorizes with that pivot order while its condition
-/// estimate holds. Throws InputError for bad options; never throws for non-convergence: `state`
-/// then holds the last accepted configuration.
+/// estimate holds. With obstacles the contact is not ramped (the obstacles are always there):
+/// each Newton iteration solves the linearized contact problem exactly, without chord steps,
+/// and the multipliers of a warm start (State::contact_lambda_N) start its contact set.
+/// Throws InputError for bad options; never throws for non-convergence: `state` then holds the
+/// last accepted configuration (for kContactNotSettled, the last iterate of the failed step).
 ///
 /// `loads` replace the model's own (drive tensions and temperatures, tip wrench, gravity;
 /// loads.applied(model) with its load scale; InputError naming the field when they do not fit
@@ -405,7 +409,9 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state);
 
 /// Fills a result file record: method "fe", discretization {elements, order}, tip pose,
 /// actuator tensions and elongations (coil contact at the segments of `loads`), three-point
-/// bending radius, centerline at nodes.
+/// bending radius, centerline at nodes, the base reaction (Discretization::base_reaction at
+/// the state's load factor) and, per obstacle, rod::summarize_contact of the contact samples
+/// (Discretization::contact_samples) about the base point.
 rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
                         const State& state, const Summary& summary);
 /// make_result with the model's own loads.
