@@ -305,9 +305,10 @@ bool solve_lcp(const Eigen::MatrixXd& W, const VectorXd& q, double eps_w, std::v
 /// to a unit multiplier (its force G_j on its node); the linearized gaps are b + W mu with b_i
 /// = g_i + D_i dx0 and W_ij = D_i x_j (D_i = dg_i/dx by central differences), and the new
 /// multipliers mu solve that complementarity problem exactly (solve_lcp): dx = dx0 + sum_j
-/// mu_j x_j. Only the pairs closed now or penetrating at dx0 enter the dense problem at first;
-/// a pair left out whose linearized gap comes out negative joins and the problem is solved
-/// again. False (with `why`) when a solve fails or the pivoting does not end.
+/// mu_j x_j. Only the pairs closed now (or, with none, the deepest penetration at dx0) enter
+/// the dense problem at first; the pairs left out whose linearized gaps come out negative join
+/// and the problem is solved again. False (with `why`) when a solve fails or the pivoting does not
+/// end.
 bool contact_step(const Discretization& disc, const Options& options, const State& st,
                   const VectorXd& r_open, LinearSystem& linear, VectorXd& dx, std::string& why) {
   const int n = disc.dof_count(), m = disc.contact_count(), first = n - m;
@@ -329,11 +330,19 @@ bool contact_step(const Discretization& disc, const Options& options, const Stat
       0.1 * (options.tolerance_abs + disc.round_off_floor().force) / disc.contact_stiffness_N_m();
   std::vector<int> pairs;  // the pairs of the dense problem
   std::vector<char> in(static_cast<std::size_t>(m), 0);
+  // Start from the closed pairs, or without any from the deepest penetration at dx0: the
+  // pairs it holds off need no column of their own (each column is a back-substitution).
+  int deepest = -1;
   for (int j = 0; j < m; ++j) {
-    if (st.contact_lambda_N[j] > 0.0 || b[j] < eps_w) {
+    if (st.contact_lambda_N[j] > 0.0) {
       pairs.push_back(j);
       in[j] = 1;
     }
+    if (b[j] < eps_w && (deepest < 0 || b[j] < b[deepest])) deepest = j;
+  }
+  if (pairs.empty() && deepest >= 0) {
+    pairs.push_back(deepest);
+    in[deepest] = 1;
   }
   std::vector<VectorXd> x(static_cast<std::size_t>(m));
   VectorXd mu;

@@ -530,5 +530,58 @@ TEST(BeamFeContact, DynamicsRejectsObstacles) {
   EXPECT_THROW(BeamDynamics(m, o), DomainError);
 }
 
+/// Median wall time of `repeats` cold solves [s] and the last summary.
+double median_solve_time(const rod::RodModel& m, const Options& opt, Summary& last) {
+  std::vector<double> times;
+  for (int i = 0; i < 5; ++i) {
+    State st;
+    last = Solver(m, opt).solve(rod::Loads::from_model(m), st);
+    times.push_back(last.wall_time_s);
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+TEST(BeamFeContact, CostOfAContactSolveAgainstTheSameSolveWithoutTheObstacle) {
+  // Informational (printed, not asserted: timings depend on the machine): a cold solve with
+  // the obstacle against the same model without it.
+  const double d = 10e-3, H = 5e-3;
+  for (const int elements : {16, 128}) {
+    rod::RodModel m = horizontal_rod(d, H + 0.5 * d);
+    const double B = m.bending_torsion_stiffness()[0];
+    m.tip_force_W_N = Vector3d(0.0, 0.0, -2.0 * 3.0 * B * H);  // twice the onset load
+    m.obstacles = {floor_plane()};
+    rod::RodModel free = m;
+    free.obstacles.clear();
+    Summary with, without;
+    const double t_with = median_solve_time(m, options(elements), with);
+    const double t_without = median_solve_time(free, options(elements), without);
+    ASSERT_TRUE(with.converged()) << with.message;
+    ASSERT_TRUE(without.converged()) << without.message;
+    std::printf(
+        "  tip on the floor, %3d elements: %.2e s (%d iterations, %d load steps) vs "
+        "%.2e s without the floor (%d iterations, %d load steps): x%.1f\n",
+        elements, t_with, with.iterations, with.load_steps, t_without, without.iterations,
+        without.load_steps, t_with / t_without);
+  }
+  for (const int elements : {32, 128}) {
+    rod::RodModel m = horizontal_rod(2e-3, 1e-3 + 1e-3);
+    m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
+    m.obstacles = {floor_plane()};
+    rod::RodModel free = m;
+    free.obstacles.clear();
+    Summary with, without;
+    const double t_with = median_solve_time(m, options(elements), with);
+    const double t_without = median_solve_time(free, options(elements), without);
+    ASSERT_TRUE(with.converged()) << with.message;
+    ASSERT_TRUE(without.converged()) << without.message;
+    std::printf(
+        "  heavy rod on the floor, %3d elements: %.2e s (%d iterations, %d load steps) "
+        "vs %.2e s hanging free (%d iterations, %d load steps): x%.1f\n",
+        elements, t_with, with.iterations, with.load_steps, t_without, without.iterations,
+        without.load_steps, t_with / t_without);
+  }
+}
+
 }  // namespace
 }  // namespace tcasim::beam_fe
