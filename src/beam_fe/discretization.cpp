@@ -76,6 +76,8 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
   require(options.tolerance_abs >= 0.0, "tolerance_abs", options.tolerance_abs, "must be >= 0");
   require(options.tolerance_rel >= 0.0, "tolerance_rel", options.tolerance_rel, "must be >= 0");
   require(options.max_iterations >= 1, "max_iterations", options.max_iterations, "must be >= 1");
+  require(options.max_contact_changes >= 0, "max_contact_changes", options.max_contact_changes,
+          "must be >= 0");
   require(options.initial_load_step > 0.0 && options.initial_load_step <= 1.0, "initial_load_step",
           options.initial_load_step, "must be in (0, 1]");
   require(model.length_m > 0.0, "body.length_m", model.length_m, "must be > 0");

@@ -523,6 +523,32 @@ TEST(BeamFeContact, WarmStartKeepsTheMultipliersAndIsOneNewtonSolve) {
   EXPECT_STREQ(to_string(Summary::Status::kContactNotSettled), "contact_not_settled");
 }
 
+TEST(BeamFeContact, AContactSetThatDoesNotSettleIsReportedWithTheLastIterate) {
+  // No contact change allowed: every load step that finds the floor fails; the solve ends with
+  // contact_not_settled and the last iterate of the failed step (touching the floor).
+  rod::RodModel m = horizontal_rod(2e-3, 1e-3 + 1e-3);
+  m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
+  m.obstacles = {floor_plane()};
+  Options opt = options(16);
+  opt.max_contact_changes = 0;
+  const Solver solver(m, opt);
+  State st;
+  const rod::Loads loads = rod::Loads::from_model(m);
+  const Summary sum = solver.solve(loads, st);
+  EXPECT_EQ(sum.status, Summary::Status::kContactNotSettled);
+  EXPECT_NE(sum.message.find("max_contact_changes"), std::string::npos) << sum.message;
+  EXPECT_GT(sum.load_factor, 0.0);
+  EXPECT_EQ(st.load_factor, sum.load_factor);
+  bool touching = false;
+  for (const double lambda : st.contact_lambda_N) touching = touching || lambda > 0.0;
+  EXPECT_TRUE(touching);
+  const rod::Result res = solver.make_result(loads, st, sum);
+  EXPECT_FALSE(res.converged);
+  EXPECT_EQ(res.status, "contact_not_settled");
+  opt.max_contact_changes = -1;
+  EXPECT_THROW(Solver(m, opt), InputError);
+}
+
 TEST(BeamFeContact, DynamicsRejectsObstacles) {
   rod::RodModel m = horizontal_rod(2e-3, 0.01);
   m.obstacles = {floor_plane()};
