@@ -740,9 +740,10 @@ std::vector<rod::ContactSample> Discretization::contact_samples(const State& sta
     for (int c = 0; c < contact_candidates_; ++c) {
       const int j = (k - 1) * contact_pairs_per_node() + obstacle * contact_candidates_ + c;
       const ContactPair pair = contact_pair(state, j);
-      const double lambda_N = state.contact_lambda_N.empty()
-                                  ? 0.0
-                                  : state.contact_lambda_N[static_cast<std::size_t>(j)];
+      // A state without (these) multipliers: every pair open.
+      const double lambda_N = static_cast<int>(state.contact_lambda_N.size()) == contact_count()
+                                  ? state.contact_lambda_N[static_cast<std::size_t>(j)]
+                                  : 0.0;
       rod::ContactSample sample;
       sample.s_m = state.s_m[static_cast<std::size_t>(k)];
       sample.point_W_m = state.p_W_m[static_cast<std::size_t>(k)] + pair.section.offset_W_m;
