@@ -114,9 +114,10 @@ namespace {
 
 using study::kDefaultSweepChunk;
 
-/// One CSV row of a sweep point (the columns of the header in add_sweep_command); n_probes:
-/// the model's probe count.
-std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes) {
+/// One CSV row of a sweep point (the columns of the header in add_sweep_command); n_probes,
+/// n_obstacles: the model's probe and obstacle counts.
+std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes,
+                      std::size_t n_obstacles) {
   std::string row =
       fmt::format("{},{},{},{},{:.12e},{:.12e},{:.12e},{}", value, r.converged ? 1 : 0,
                   r.iterations, r.residual ? fmt::format("{:.6e}", *r.residual) : std::string(),
@@ -137,6 +138,16 @@ std::string sweep_row(double value, const rod::Result& r, std::size_t n_probes) 
       row += fmt::format(",{:.12e},{:.12e},{:.12e}", p.x(), p.y(), p.z());
     } else {
       row += ",,,";
+    }
+  }
+  // Obstacles: the resultant on the rod and whether it touches (empty cells without a result).
+  for (std::size_t i = 0; i < n_obstacles; ++i) {
+    if (i < r.contacts.size()) {
+      const Eigen::Vector3d& f = r.contacts[i].force_W_N;
+      row += fmt::format(",{:.12e},{:.12e},{:.12e},{}", f.x(), f.y(), f.z(),
+                         r.contacts[i].in_contact() ? 1 : 0);
+    } else {
+      row += ",,,,";
     }
   }
   row += '\n';
@@ -256,6 +267,9 @@ void add_sweep_command(CLI::App& app) {
       }
     }
     for (const auto& p : model.probes) fmt::print(os, ",{0}_x_m,{0}_y_m,{0}_z_m", p.name);
+    for (const auto& o : model.obstacles) {
+      fmt::print(os, ",{0}_force_x_N,{0}_force_y_N,{0}_force_z_N,{0}_in_contact", o.name);
+    }
     fmt::print(os, "\n");
 
     // Long sweeps report progress on stderr: in place on a terminal, whole lines in a log.
@@ -274,7 +288,7 @@ void add_sweep_command(CLI::App& app) {
     std::mutex progress_mutex;
     const auto on_point = [&](std::size_t k, rod::Result&& r) {
       if (!r.converged) failures.fetch_add(1);
-      rows[k - first] = sweep_row(values[k], r, model.probes.size());
+      rows[k - first] = sweep_row(values[k], r, model.probes.size(), model.obstacles.size());
       const std::size_t now_done = done.fetch_add(1) + 1;
       if (!progress) return;
       std::unique_lock<std::mutex> lock(progress_mutex, std::defer_lock);

@@ -105,6 +105,15 @@ bool all_finite(const rod::Result& r) {
   for (const rod::ProbeResult& p : r.probes) {
     if (!finite3(p.position_W_m)) return false;
   }
+  for (const rod::ContactResult& c : r.contacts) {
+    if (!finite3(c.force_W_N) || !finite3(c.moment_W_Nm) || !std::isfinite(c.max_penetration_m)) {
+      return false;
+    }
+  }
+  if (r.base_reaction &&
+      (!finite3(r.base_reaction->force_W_N) || !finite3(r.base_reaction->moment_W_Nm))) {
+    return false;
+  }
   return true;
 }
 
@@ -298,6 +307,42 @@ void register_solve(py::module_& m) {
           },
           "The scenario's probes: a dict name -> world position [m], shape (3,), in the "
           "scenario's order (file: probes[k].position_m); empty without probes.")
+      .def_property_readonly(
+          "contacts",
+          [](const Result& r) {
+            py::dict d;
+            for (const rod::ContactResult& c : r.r.contacts) {
+              py::list regions;
+              for (const rod::ContactRegion& g : c.regions) {
+                py::dict region;
+                region["s_m"] = py::make_tuple(g.s0_m, g.s1_m);
+                region["force_N"] = vec3(g.force_W_N);
+                regions.append(region);
+              }
+              py::dict entry;
+              entry["force_N"] = vec3(c.force_W_N);
+              entry["moment_Nm"] = vec3(c.moment_W_Nm);
+              entry["regions"] = regions;
+              entry["max_penetration_m"] = c.max_penetration_m;
+              d[py::str(c.obstacle)] = entry;
+            }
+            return d;
+          },
+          "Per obstacle (a dict name -> dict, in the scenario's order): its resultant force on "
+          "the rod `force_N` (world), its moment `moment_Nm` about the base point, `regions` "
+          "(a list of {s_m: (s0, s1), force_N}) and `max_penetration_m`; empty without "
+          "obstacles (file: contacts).")
+      .def_property_readonly(
+          "base_reaction",
+          [](const Result& r) -> py::object {
+            if (!r.r.base_reaction) return py::none();
+            py::dict d;
+            d["force_N"] = vec3(r.r.base_reaction->force_W_N);
+            d["moment_Nm"] = vec3(r.r.base_reaction->moment_W_Nm);
+            return d;
+          },
+          "What the clamp applies to the rod: {force_N, moment_Nm} (world frame, moment about "
+          "the base point); None when the solver did not fill it (file: base_reaction).")
       .def(
           "to_dict", [](const Result& r) { return to_python(rod::to_json(r.r)); },
           "The result file's content as a dict (the numbers of the file, bit for bit).")
@@ -502,6 +547,17 @@ the solver runs.)") +
               return i < r.probes.size() ? r.probes[i].position_W_m[c] : nan;
             });
           }
+        }
+        for (std::size_t i = 0; i < model.obstacles.size(); ++i) {
+          for (int c = 0; c < 3; ++c) {
+            column(fmt::format("{}_force_{}_N", model.obstacles[i].name, "xyz"[c]),
+                   [i, c](const rod::Result& r) {
+                     return i < r.contacts.size() ? r.contacts[i].force_W_N[c] : nan;
+                   });
+          }
+          flag_column(model.obstacles[i].name + "_in_contact", [i](const rod::Result& r) {
+            return i < r.contacts.size() && r.contacts[i].in_contact();
+          });
         }
         py::list status;
         for (const rod::Result& r : results) status.append(r.status);

@@ -4,18 +4,19 @@
 /// the gap, its normal and the touching point of the section from section_gap, so they
 /// solve the same contact problem and differ only in where they evaluate it.
 ///
-/// The gap at s (the one definition both methods use):
-///   g(s) = d(p) - h(-n),
+/// The gap at s (the one definition both methods use; section_gaps gives its candidates):
+/// circle section of radius r (and a custom section's contact circle):
+///   g(s) = d(p) - r sqrt(1 - (n . t)^2),
 /// d the obstacle's signed distance of the centerline point p = p(s) (negative inside),
-/// n = grad d the obstacle's outward unit normal there, h(u) = max over the section
-/// outline y of u . (R y) the support of the outline (circle of radius r in the section
-/// plane: r sqrt(1 - (u . t)^2), t = R e3; rectangle w x h: w/2 |u . R e1| + h/2 |u . R e2|,
-/// its corners included). It is the plane distance of the lowest outline point for a plane
-/// (exact for every section); for a cylinder, sphere or box the distance of the outline
-/// point nearest along n, exact for a circle whenever n lies in the section plane, which
-/// holds where a smooth tube touches a smooth obstacle, and otherwise the true outline gap
-/// to second order in (section size / obstacle radius).
-/// Its first variation under a body displacement dp and a world rotation dtheta:
+/// n = grad d the obstacle's outward unit normal there, t = R e3: the distance of the
+/// outline point farthest along -n. It is the plane distance of the lowest outline point
+/// for a plane (exact), and exact for a cylinder, sphere or box whenever n lies in the
+/// section plane, which holds where a smooth tube touches a smooth obstacle; elsewhere it
+/// is the outline gap to second order in (section radius / obstacle radius).
+/// Rectangle section: the exact distances of its four corners and, on a curved obstacle,
+/// of the nearest interior point of each edge (section_gaps).
+/// Each candidate's first variation under a body displacement dp and a world rotation
+/// dtheta:
 ///   dg = n . dp + (c x n) . dtheta (+ c . dn, zero for a plane and for a circle with
 ///   n in the section plane), c = the touching point's offset from p (world),
 /// so the contact force lambda n at p + c (lambda >= 0, the pressure's resultant) does the
@@ -40,9 +41,9 @@ struct Obstacle {
   Eigen::Vector3d point_W_m = Eigen::Vector3d::Zero();
   /// plane: the unit normal pointing into the free side; cylinder: the unit axis; else 0.
   Eigen::Vector3d direction_W = Eigen::Vector3d::UnitZ();
-  double radius_m = 0.0;  ///< cylinder, sphere
+  double radius_m = 0.0;                                     ///< cylinder, sphere
   Eigen::Vector3d half_extents_m = Eigen::Vector3d::Zero();  ///< box, along its own axes
-  Eigen::Matrix3d R_WO = Eigen::Matrix3d::Identity();  ///< box: columns are its axes in W
+  Eigen::Matrix3d R_WO = Eigen::Matrix3d::Identity();        ///< box: columns are its axes in W
   double friction = 0.0;  ///< Coulomb mu (dynamics, grasps); statics are frictionless
 
   /// Signed distance of the world point x to the surface [m] (negative inside) and the
@@ -73,13 +74,27 @@ ContactOutline contact_outline_at(const RodModel& model, double s_m, Side side =
 
 /// The gap of one section against one obstacle (the definition above).
 struct SectionGap {
-  double gap_m = 0.0;                                   ///< g; negative: penetration
-  Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();  ///< n, direction of the force on the rod
+  double gap_m = 0.0;                                    ///< g; negative: penetration
+  Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();   ///< n, direction of the force on the rod
   Eigen::Vector3d offset_W_m = Eigen::Vector3d::Zero();  ///< c, from p to the touching point
 };
 
-/// g, n and c of the section with outline `outline` at centerline point p_W_m and body
-/// frame R_WB against `obstacle`. kNone gives the centerline's own distance (c = 0).
+/// The contact candidates of one section against one obstacle, a fixed number per outline
+/// kind (contact_candidate_count), each with its own gap, normal and touching point; a
+/// solver gives each candidate its own multiplier lambda_j >= 0. Circle (and kNone, the
+/// centerline itself, c = 0): one candidate, the support point of the definition above.
+/// Rectangle: its 4 corners (exact point distances, g_j = d(p + c_j), n_j = grad d there),
+/// so a face lying on a plane is held by its two corners' forces (any pressure across the
+/// face has their statics), then for a curved obstacle (cylinder, sphere, box) the point of
+/// each of its 4 edges nearest to the obstacle when it lies strictly inside the edge (a face
+/// on a cylinder touches there), else (plane; nearest point at a corner) that candidate is
+/// open with g = +infinity. Corners in the order (+x,+y), (-x,+y), (-x,-y), (+x,-y) of the
+/// body frame, edges in the order from each corner to the next.
+std::vector<SectionGap> section_gaps(const Obstacle& obstacle, const ContactOutline& outline,
+                                     const Eigen::Vector3d& p_W_m, const Eigen::Matrix3d& R_WB);
+/// Candidates per section: 1 for a circle or kNone, 8 for a rectangle.
+int contact_candidate_count(ContactOutline::Kind kind);
+/// The candidate of section_gaps with the smallest gap (the section's gap).
 SectionGap section_gap(const Obstacle& obstacle, const ContactOutline& outline,
                        const Eigen::Vector3d& p_W_m, const Eigen::Matrix3d& R_WB);
 
@@ -87,8 +102,8 @@ SectionGap section_gap(const Obstacle& obstacle, const ContactOutline& outline,
 
 /// One contiguous part of the body in contact with an obstacle.
 struct ContactRegion {
-  double s0_m = 0.0, s1_m = 0.0;                          ///< s0 = s1 for a point contact
-  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();    ///< resultant on the rod
+  double s0_m = 0.0, s1_m = 0.0;                        ///< s0 = s1 for a point contact
+  Eigen::Vector3d force_W_N = Eigen::Vector3d::Zero();  ///< resultant on the rod
 };
 
 /// What one obstacle does to the rod in a solution.

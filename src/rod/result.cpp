@@ -164,6 +164,36 @@ nlohmann::json to_json(const Result& result) {
     j["probes"] = probes;
   }
 
+  if (!result.contacts.empty()) {
+    json contacts = json::array();
+    for (std::size_t i = 0; i < result.contacts.size(); ++i) {
+      const ContactResult& c = result.contacts[i];
+      const std::string field = fmt::format("contacts[{}]", i);
+      json regions = json::array();
+      for (std::size_t k = 0; k < c.regions.size(); ++k) {
+        const std::string rf = fmt::format("{}.regions[{}]", field, k);
+        regions.push_back({{"s_m",
+                            {w.number(c.regions[k].s0_m, rf + ".s_m[0]"),
+                             w.number(c.regions[k].s1_m, rf + ".s_m[1]")}},
+                           {"force_N", w.vector(c.regions[k].force_W_N, rf + ".force_N")}});
+      }
+      contacts.push_back(
+          {{"obstacle", c.obstacle},
+           {"force_N", w.vector(c.force_W_N, field + ".force_N")},
+           {"moment_Nm", w.vector(c.moment_W_Nm, field + ".moment_Nm")},
+           {"regions", regions},
+           {"max_penetration_m", w.number(c.max_penetration_m, field + ".max_penetration_m")}});
+    }
+    j["contacts"] = contacts;
+    // Static solves are frictionless (docs/scenario-format.md "Obstacles").
+    j["contact_model"] = "frictionless";
+  }
+  if (result.base_reaction) {
+    j["base_reaction"] = {
+        {"force_N", w.vector(result.base_reaction->force_W_N, "base_reaction.force_N")},
+        {"moment_Nm", w.vector(result.base_reaction->moment_W_Nm, "base_reaction.moment_Nm")}};
+  }
+
   json s_m = json::array();
   json p_m = json::array();
   json R_m = json::array();

@@ -134,7 +134,7 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
   const std::string schema = peek_choice(doc, "", "schema", {kScenarioSchema});
   const Obj o(doc, "",
               {"schema", "name", "comment", "body", "gravity_m_s2", "tip_load", "tip_mass_kg",
-               "tip_constraint", "base", "tcas", "actuators", "probes"});
+               "tip_constraint", "base", "tcas", "actuators", "probes", "obstacles"});
   RodModel m;
   m.schema = schema;
   m.name = o.nonempty_string("name");
@@ -217,6 +217,10 @@ RodModel parse_scenario(const nlohmann::json& doc, const std::string& base_dir) 
     }
   }
   if (o.has("probes")) m.probes = parse_probes(o.required("probes"), "probes", m.length_m);
+  if (o.has("obstacles")) {
+    m.obstacles = parse_obstacles(o.required("obstacles"), "obstacles");
+    check_obstacles(m);
+  }
   return m;
 }
 

@@ -26,7 +26,7 @@ Section parse_section(const json& j, const std::string& path, double length_m) {
   } else if (shape == "rectangle") {
     allowed.insert(allowed.end(), {"width_m", "height_m"});
   } else {
-    allowed = {"shape", "area_m2", "I_x_m4", "I_y_m4", "J_m4"};
+    allowed = {"shape", "area_m2", "I_x_m4", "I_y_m4", "J_m4", "contact_radius_m"};
     torsion_allowed = false;
   }
   const Obj o(j, path, allowed);
@@ -52,6 +52,7 @@ Section parse_section(const json& j, const std::string& path, double length_m) {
     s.I_x_profile = positive("I_x_m4");
     s.I_y_profile = positive("I_y_m4");
     s.J_profile = positive("J_m4");
+    if (o.has("contact_radius_m")) s.contact_radius_m = o.positive("contact_radius_m");
   }
   return s;
 }

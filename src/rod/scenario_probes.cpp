@@ -10,14 +10,13 @@ namespace {
 /// more markers than any motion-capture set or sensor array on one rod.
 constexpr std::size_t kMaxProbes = 1000;
 
-/// A name that can stand in a CSV header unquoted: letters, digits, '_', '-', '.'.
+}  // namespace
+
 bool csv_safe(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
   });
 }
-
-}  // namespace
 
 std::vector<Probe> parse_probes(const json& j, const std::string& path, double body_length_m) {
   if (!j.is_array()) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
 
@@ -154,6 +155,180 @@ std::string vtp_document(const RodModel& model, const Result& result) {
 
 void write_vtp(const RodModel& model, const Result& result, const std::string& path) {
   write_file_atomically(path, vtp_document(model, result), "vtk file");
+  if (!model.obstacles.empty()) {
+    write_file_atomically(obstacles_vtp_path(path), obstacles_vtp_document(model, result),
+                          "vtk file");
+  }
+}
+
+std::string obstacles_vtp_path(const std::string& path) {
+  const std::string ending = ".vtp";
+  if (path.size() >= ending.size() &&
+      path.compare(path.size() - ending.size(), ending.size(), ending) == 0) {
+    return path.substr(0, path.size() - ending.size()) + ".obstacles.vtp";
+  }
+  return path + ".obstacles.vtp";
+}
+
+namespace {
+
+/// Polygons of one surface: points and, per polygon, its point indices.
+struct Surface {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<std::size_t>> polygons;
+};
+
+/// Two unit vectors spanning the plane normal to the unit vector a.
+void tangent_basis(const Eigen::Vector3d& a, Eigen::Vector3d& u, Eigen::Vector3d& v) {
+  const Eigen::Vector3d t =
+      std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  u = (t - t.dot(a) * a).normalized();
+  v = a.cross(u);
+}
+
+/// A grid of quads over the parameter rectangle [0, 1]^2 of `at` (nu x nv cells).
+template <class F>
+void add_grid(Surface& out, int nu, int nv, bool wrap_u, const F& at) {
+  const std::size_t first = out.points.size();
+  const int cols = wrap_u ? nu : nu + 1;
+  for (int j = 0; j <= nv; ++j) {
+    for (int i = 0; i < cols; ++i) {
+      out.points.push_back(at(static_cast<double>(i) / nu, static_cast<double>(j) / nv));
+    }
+  }
+  const auto index = [&](int i, int j) {
+    return first + static_cast<std::size_t>(j * cols + (wrap_u ? i % nu : i));
+  };
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      out.polygons.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)});
+    }
+  }
+}
+
+Surface obstacle_surface(const Obstacle& o, const Eigen::Vector3d& centre, double half_size) {
+  Surface s;
+  constexpr double kPi = 3.14159265358979323846;
+  switch (o.type) {
+    case Obstacle::Type::kPlane: {
+      Eigen::Vector3d u, v;
+      tangent_basis(o.direction_W, u, v);
+      const Eigen::Vector3d c = centre - o.direction_W.dot(centre - o.point_W_m) * o.direction_W;
+      add_grid(s, 1, 1, false, [&](double a, double b) {
+        return Eigen::Vector3d(c + half_size * ((2 * a - 1) * u + (2 * b - 1) * v));
+      });
+      break;
+    }
+    case Obstacle::Type::kCylinder: {
+      Eigen::Vector3d u, v;
+      tangent_basis(o.direction_W, u, v);
+      const Eigen::Vector3d c =
+          o.point_W_m + o.direction_W.dot(centre - o.point_W_m) * o.direction_W;
+      add_grid(s, 64, 1, true, [&](double a, double b) {
+        const double phi = 2 * kPi * a;
+        return Eigen::Vector3d(c + o.radius_m * (std::cos(phi) * u + std::sin(phi) * v) +
+                               half_size * (2 * b - 1) * o.direction_W);
+      });
+      break;
+    }
+    case Obstacle::Type::kSphere:
+      add_grid(s, 64, 32, true, [&](double a, double b) {
+        const double phi = 2 * kPi * a, theta = kPi * b;
+        return Eigen::Vector3d(o.point_W_m +
+                               o.radius_m * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                                            std::sin(theta) * std::sin(phi),
+                                                            std::cos(theta)));
+      });
+      break;
+    case Obstacle::Type::kBox: {
+      // Six faces, each a quad of the box's corners (outward order is not needed for display).
+      for (int axis = 0; axis < 3; ++axis) {
+        for (const double side : {-1.0, 1.0}) {
+          const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+          add_grid(s, 1, 1, false, [&](double a, double b) {
+            Eigen::Vector3d y;
+            y[axis] = side * o.half_extents_m[axis];
+            y[a1] = (2 * a - 1) * o.half_extents_m[a1];
+            y[a2] = (2 * b - 1) * o.half_extents_m[a2];
+            return Eigen::Vector3d(o.point_W_m + o.R_WO * y);
+          });
+        }
+      }
+      break;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string obstacles_vtp_document(const RodModel& model, const Result& result) {
+  if (model.obstacles.empty()) return {};
+  // The patch of the unbounded shapes: around the centerline's bounding box.
+  Eigen::Vector3d lo = model.base_position_W_m, hi = model.base_position_W_m;
+  for (const Eigen::Vector3d& p : result.centerline_p_W_m) {
+    if (!p.allFinite()) continue;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  const double half_size = 0.5 * (hi - lo).norm() + 0.5 * model.length_m;
+  std::string coords, connectivity, offsets, ids;
+  std::vector<std::string> names;
+  std::size_t points = 0, polygons = 0, next = 0;
+  for (std::size_t i = 0; i < model.obstacles.size(); ++i) {
+    const Surface surface = obstacle_surface(model.obstacles[i], centre, half_size);
+    names.push_back(model.obstacles[i].name);
+    for (const Eigen::Vector3d& p : surface.points) {
+      coords += fmt::format("          {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
+    }
+    for (const auto& poly : surface.polygons) {
+      for (std::size_t k : poly) connectivity += fmt::format("{} ", points + k);
+      next += poly.size();
+      offsets += fmt::format("{} ", next);
+      ids += fmt::format("{} ", i);
+    }
+    points += surface.points.size();
+    polygons += surface.polygons.size();
+  }
+  std::string doc;
+  doc += "<?xml version=\"1.0\"?>\n";
+  doc +=
+      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n";
+  doc += "  <PolyData>\n";
+  doc += "    <FieldData>\n";
+  doc += string_array("scenario", {result.scenario});
+  doc += string_array("obstacle_names", names);
+  doc += "    </FieldData>\n";
+  doc += fmt::format(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+      "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+      points, polygons);
+  doc += "      <CellData Scalars=\"obstacle_id\">\n";
+  doc += "        <DataArray type=\"Int32\" Name=\"obstacle_id\" format=\"ascii\">\n          " +
+         ids + "\n";
+  doc += "        </DataArray>\n";
+  doc += "      </CellData>\n";
+  doc += "      <Points>\n";
+  doc +=
+      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">\n" +
+      coords;
+  doc += "        </DataArray>\n";
+  doc += "      </Points>\n";
+  doc += "      <Polys>\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n          " +
+         connectivity + "\n";
+  doc += "        </DataArray>\n";
+  doc += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n          " +
+         offsets + "\n";
+  doc += "        </DataArray>\n";
+  doc += "      </Polys>\n";
+  doc += "    </Piece>\n";
+  doc += "  </PolyData>\n";
+  doc += "</VTKFile>\n";
+  return doc;
 }
 
 std::string shape_csv_document(const RodModel& model, const Result& result) {

@@ -33,8 +33,18 @@ std::vector<ShapeCurve> shape_curves(const RodModel& model, const Result& result
 /// field data `scenario`, `method` and `curve_names` (String arrays).
 std::string vtp_document(const RodModel& model, const Result& result);
 
-/// Writes vtp_document(model, result) to `path` (InputError "vtk file" when it cannot be written).
+/// Writes vtp_document(model, result) to `path` (InputError "vtk file" when it cannot be
+/// written); with obstacles also obstacles_vtp_document to obstacles_vtp_path(path).
 void write_vtp(const RodModel& model, const Result& result, const std::string& path);
+
+/// The model's obstacles as surfaces (VTK XML PolyData, polygons; cell data `obstacle_id`,
+/// field data `obstacle_names`), so ParaView shows the rod with what it touches: spheres and
+/// boxes whole, planes and cylinders (unbounded) as the patch around the result's centerline
+/// (its bounding box grown by half the rod length each way). Empty string without obstacles.
+std::string obstacles_vtp_document(const RodModel& model, const Result& result);
+/// Where write_vtp puts the obstacles: `path` with its `.vtp` ending (if any) replaced by
+/// `.obstacles.vtp`.
+std::string obstacles_vtp_path(const std::string& path);
 
 /// The shape CSV: header `curve,actuator_id,s_m,x_m,y_m,z_m`, one row per point, curves in
 /// the order of shape_curves().

@@ -245,3 +245,37 @@ TEST(ShapeCsv, OneRowPerPointWithCurveNamesAndNumbersThatReadBack) {
 
 }  // namespace
 }  // namespace tcasim::rod
+
+namespace tcasim::rod {
+namespace {
+
+TEST(ObstaclesVtp, OneSurfacePerObstacleWithItsPolygonCounts) {
+  RodModel m = sample_model();
+  EXPECT_EQ(obstacles_vtp_document(m, sample_result(5)), "");
+  Obstacle floor;
+  floor.name = "floor";
+  floor.direction_W = Eigen::Vector3d::UnitZ();
+  Obstacle ball;
+  ball.name = "ball";
+  ball.type = Obstacle::Type::kSphere;
+  ball.point_W_m = {0.0, 0.1, 0.02};
+  ball.radius_m = 0.01;
+  Obstacle block;
+  block.name = "block";
+  block.type = Obstacle::Type::kBox;
+  block.half_extents_m = {0.01, 0.02, 0.03};
+  block.point_W_m = {0.2, 0, 0};
+  m.obstacles = {floor, ball, block};
+  const std::string doc = obstacles_vtp_document(m, sample_result(5));
+  // Plane: one quad; sphere: 64 x 32 quads; box: six faces.
+  EXPECT_NE(doc.find("NumberOfPolys=\"2055\""), std::string::npos);
+  EXPECT_NE(doc.find("NumberOfPoints=\"2140\""), std::string::npos);  // 4 + 64 x 33 + 6 x 4
+  EXPECT_NE(doc.find("Name=\"obstacle_names\" NumberOfTuples=\"3\""), std::string::npos);
+  // The sphere's poles lie on its surface.
+  EXPECT_NE(doc.find("0 0.10000000000000001 0.029999999999999999"), std::string::npos);
+  EXPECT_EQ(obstacles_vtp_path("out/rod.vtp"), "out/rod.obstacles.vtp");
+  EXPECT_EQ(obstacles_vtp_path("rod"), "rod.obstacles.vtp");
+}
+
+}  // namespace
+}  // namespace tcasim::rod

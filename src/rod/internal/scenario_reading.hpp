@@ -239,6 +239,12 @@ Actuator parse_actuator(const json& j, const std::string& path, const RodModel& 
 /// The top-level `probes` list (docs/scenario-format.md "Probes and frames") on a body of
 /// length body_length_m (scenario_probes.cpp).
 std::vector<Probe> parse_probes(const json& j, const std::string& path, double body_length_m);
+/// The `obstacles` list (docs/scenario-format.md "Obstacles"; rod/scenario_obstacles.cpp):
+/// shapes and their keys only; check_obstacles (rod/obstacle.hpp) then checks them against
+/// the body.
+std::vector<Obstacle> parse_obstacles(const json& j, const std::string& path);
+/// A name that can stand in a CSV header unquoted: letters, digits, '_', '-', '.'.
+bool csv_safe(const std::string& name);
 
 // ---------------------------------------------------------------------------------------
 // Time profiles and electro-thermal drives (scenario_time_profiles.cpp, scenario_thermal.cpp).
