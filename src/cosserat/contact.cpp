@@ -25,9 +25,9 @@ namespace {
 constexpr double kArmijo = 1e-4;
 /// Relative forward-difference step sqrt(eps) of the Jacobian columns.
 constexpr double kForwardStep = 1.4901161193847656e-08;
-/// Scaled residual of the iteration on one active set below which its negative multipliers
-/// leave the set (sqrt of a typical tolerance: Newton is then a step or two from the end).
-constexpr double kReleaseResidual = 1e-5;
+/// Scaled residual of the iteration on one active set below which the set is updated
+/// (about sqrt of the tolerance: Newton is then a step or two from the end).
+constexpr double kSettledResidual = 1e-5;
 
 }  // namespace
 
@@ -35,6 +35,7 @@ void ShootingSolver::Impl::build_contact_grid() {
   ContactGrid& g = contact_grid;
   g = ContactGrid();
   g.n_obs = static_cast<int>(model.obstacles.size());
+  g.n_cand = 1;
   const int steps = options.integrator.steps;
   g.s.push_back(0.0);
   g.knot.push_back(-1);
@@ -61,6 +62,7 @@ void ShootingSolver::Impl::build_contact_grid() {
     // The outline of the section at the node (at the tip, the limit from the left).
     g.outline.push_back(rod::contact_outline_at(
         model, g.s[k], k + 1 == g.s.size() ? rod::Side::kLeft : rod::Side::kRight));
+    g.n_cand = std::max(g.n_cand, rod::contact_candidate_count(g.outline.back().kind));
   }
   ode::IntegratorOptions one = options.integrator;
   one.steps = 1;
@@ -97,13 +99,22 @@ bool ShootingSolver::Impl::contact_ivp(const rod::Loads& act, const Eigen::Vecto
       const Mat3 R = Eigen::Map<const Mat3>(y.data() + kR);
       Vec3 f = Vec3::Zero(), m = Vec3::Zero();
       for (int o = 0; o < g.n_obs; ++o) {
-        const auto pair = static_cast<std::size_t>((k - 1) * g.n_obs + o);
-        rod::SectionGap& sg = iv.gap[pair];
-        sg = rod::section_gap(model.obstacles[static_cast<std::size_t>(o)], g.outline[ku], p, R);
-        if (lam[pair] == 0.0) continue;
-        const Vec3 F = lam[pair] * sg.normal_W;
-        f += F;
-        m += sg.offset_W_m.cross(F);
+        candidates =
+            rod::section_gaps(model.obstacles[static_cast<std::size_t>(o)], g.outline[ku], p, R);
+        for (int j = 0; j < g.n_cand; ++j) {
+          const auto pair = static_cast<std::size_t>((k - 1) * g.per_node() + o * g.n_cand + j);
+          rod::SectionGap& sg = iv.gap[pair];
+          if (j < static_cast<int>(candidates.size())) {
+            sg = candidates[static_cast<std::size_t>(j)];
+          } else {  // a section with fewer candidates than the grid's slots: open
+            sg = rod::SectionGap();
+            sg.gap_m = std::numeric_limits<double>::infinity();
+          }
+          if (lam[pair] == 0.0) continue;
+          const Vec3 F = lam[pair] * sg.normal_W;
+          f += F;
+          m += sg.offset_W_m.cross(F);
+        }
       }
       if (!f.isZero(0.0) || !m.isZero(0.0)) {
         if (!point_wrench_jump(g.s[ku], R.transpose() * f, R.transpose() * m, y)) return false;
@@ -156,10 +167,10 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
                            const ContactIvp& iv, bool one_per_run, bool release,
                            std::vector<char>& out) {
     out = in_now;
-    for (int o = 0; o < g.n_obs; ++o) {
+    for (int col = 0; col < g.per_node(); ++col) {  // one obstacle's candidate along s
       int deepest = -1, most_negative = -1;
       for (int k = 0; k <= n_nodes; ++k) {
-        const int i = k < n_nodes ? k * g.n_obs + o : -1;
+        const int i = k < n_nodes ? k * g.per_node() + col : -1;
         const bool violates = i >= 0 && !in_now[i] && iv.gap[i].gap_m < -gap_tol;
         if (violates && (deepest < 0 || iv.gap[i].gap_m < iv.gap[deepest].gap_m)) deepest = i;
         if (!violates && deepest >= 0) {
@@ -167,6 +178,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
           deepest = -1;
         }
         const bool on = i >= 0 && in_now[i];
+        if (on && !std::isfinite(iv.gap[i].gap_m)) out[i] = 0;  // the candidate vanished
         if (release && on && l[i] < -lam_tol) {
           if (!one_per_run) out[i] = 0;
           if (most_negative < 0 || l[i] < l[most_negative]) most_negative = i;
@@ -188,6 +200,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     update_active(in, lam, contact_iv, false, true, start);
     in = start;
   }
+  std::vector<char> recent(static_cast<std::size_t>(n_pairs), 0);  // released last
   std::vector<std::vector<char>> seen;  // the active sets visited (cycle detection)
   bool cautious = false;                // after a cycle: one pair per contiguous zone
   bool changed = true;
@@ -212,9 +225,9 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       const double moved = (trial.y_node[static_cast<std::size_t>(k)].segment<3>(kP) -
                             contact_iv.y_node[static_cast<std::size_t>(k)].segment<3>(kP))
                                .norm();
-      for (int o = 0; o < g.n_obs; ++o) {
-        const double clear = std::max(0.0, contact_iv.gap[(k - 1) * g.n_obs + o].gap_m);
-        if (moved > clear + half_thickness[static_cast<std::size_t>(o)]) return true;
+      for (int col = 0; col < g.per_node(); ++col) {
+        const double clear = std::max(0.0, contact_iv.gap[(k - 1) * g.per_node() + col].gap_m);
+        if (moved > clear + half_thickness[static_cast<std::size_t>(col / g.n_cand)]) return true;
       }
     }
     return false;
@@ -260,7 +273,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       const double h0 = kForwardStep * std::max(std::abs(lam[pair]), Fc);
       lam_t[pair] = lam[pair] + h0;
       const double h = lam_t[pair] - lam[pair];
-      const int node = pair / g.n_obs + 1;
+      const int node = pair / g.per_node() + 1;
       if (!contact_ivp(act, x, lam_t, node, contact_fd)) {
         why = "the IVP failed while differencing the contact Jacobian";
         return Summary::Status::kLineSearchFailed;
@@ -271,7 +284,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       // next column's node are those of contact_iv again).
       for (std::size_t k = static_cast<std::size_t>(node) + 1; k < contact_iv.y_node.size(); ++k)
         contact_fd.y_node[k] = contact_iv.y_node[k];
-      for (int i = node * g.n_obs; i < n_pairs; ++i) contact_fd.gap[i] = contact_iv.gap[i];
+      for (int i = node * g.per_node(); i < n_pairs; ++i) contact_fd.gap[i] = contact_iv.gap[i];
     }
     dz = J.partialPivLu().solve(-F);
     if (!dz.allFinite()) {
@@ -301,12 +314,20 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     x = xt;
     lam = lam_t;
     std::swap(contact_iv, contact_trial);
-    // Multipliers decide only once the iteration on this active set has (nearly) converged:
-    // the signs of a half-converged step are not reliable (a pair released on them comes
-    // back, and the set cycles). Penetrating pairs enter at once.
+    // Multipliers leave only once the iteration on the set has (nearly) converged: the signs
+    // of a half-converged step are not reliable. Penetrating pairs enter at once (a node must
+    // not pass through a thin obstacle), except those released at the last such update until
+    // the set has converged again (they would re-enter at once, and the set cycle).
     std::vector<char> next = in;
-    update_active(in, lam, contact_iv, cautious, Ft.lpNorm<Eigen::Infinity>() <= kReleaseResidual,
-                  next);
+    const bool settled = Ft.lpNorm<Eigen::Infinity>() <= kSettledResidual;
+    update_active(in, lam, contact_iv, cautious, settled, next);
+    if (settled) {
+      for (int i = 0; i < n_pairs; ++i) recent[i] = in[i] && !next[i];
+    } else {
+      for (int i = 0; i < n_pairs; ++i) {
+        if (recent[i]) next[i] = in[i];
+      }
+    }
     changed = next != in;
     if (std::getenv("TCASIM_CONTACT_DEBUG")) {
       for (int i = 0; i < n_pairs; ++i)
@@ -447,16 +468,19 @@ std::vector<rod::ContactResult> ShootingSolver::Impl::contact_results(
   const int n = static_cast<int>(g.s.size()) - 1;
   for (int o = 0; o < g.n_obs; ++o) {
     std::vector<rod::ContactSample> node_samples;
-    node_samples.reserve(static_cast<std::size_t>(n));
+    node_samples.reserve(static_cast<std::size_t>(n * g.n_cand));
     for (int k = 1; k <= n; ++k) {
-      const auto pair = static_cast<std::size_t>((k - 1) * g.n_obs + o);
-      const rod::SectionGap& sg = iv.gap[pair];
-      rod::ContactSample c;
-      c.s_m = g.s[static_cast<std::size_t>(k)];
-      c.point_W_m = iv.y_node[static_cast<std::size_t>(k)].segment<3>(kP) + sg.offset_W_m;
-      c.force_W_N = lam[pair] * sg.normal_W;
-      c.gap_m = sg.gap_m;
-      node_samples.push_back(c);
+      for (int j = 0; j < g.n_cand; ++j) {
+        const auto pair = static_cast<std::size_t>((k - 1) * g.per_node() + o * g.n_cand + j);
+        const rod::SectionGap& sg = iv.gap[pair];
+        if (!std::isfinite(sg.gap_m) && lam[pair] == 0.0) continue;
+        rod::ContactSample c;
+        c.s_m = g.s[static_cast<std::size_t>(k)];
+        c.point_W_m = iv.y_node[static_cast<std::size_t>(k)].segment<3>(kP) + sg.offset_W_m;
+        c.force_W_N = lam[pair] * sg.normal_W;
+        c.gap_m = sg.gap_m;
+        node_samples.push_back(c);
+      }
     }
     out.push_back(rod::summarize_contact(model.obstacles[static_cast<std::size_t>(o)], node_samples,
                                          model.base_position_W_m));

@@ -194,10 +194,11 @@ struct Solution {
   std::vector<double> tensions_N;     ///< per actuator (one string)
   std::vector<double> elongations_m;  ///< per actuator (one string)
   /// Obstacles (docs/conventions.md "Contact in the shooting method"): the contact
-  /// multiplier lambda [N] of each (grid node, obstacle) pair, index (k - 1) n_obstacles + o
-  /// for node s_k = k L / steps (k = 1..steps) and model obstacle o; zero where open. A warm
-  /// start takes its active set (lambda > 0) and multipliers from here. Empty without
-  /// obstacles.
+  /// multiplier lambda [N] of each (grid node, obstacle, candidate) pair, index
+  /// ((k - 1) n_obstacles + o) n_candidates + j for node s_k (k = 1..steps; s_k = k L / steps
+  /// on a uniform body), model obstacle o and contact candidate j of the section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle); zero where open. A warm start
+  /// takes its active set (lambda > 0) and multipliers from here. Empty without obstacles.
   std::vector<double> contact_lambda_N;
 
   /// A converged point of a sequence of warm-started solves (a sweep).

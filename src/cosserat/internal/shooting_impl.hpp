@@ -199,14 +199,18 @@ struct ShootingSolver::Impl : internal::TipConditions {
   // --- contact with obstacles (contact.cpp; docs/conventions.md "Contact in the shooting
   // method")
   /// The contact points: the step nodes s_k (k = 1..n) of the fine level's grid (pieces
-  /// included), each against each model obstacle; pair index (k - 1) n_obs + o.
+  /// included), each against each model obstacle with each contact candidate of the section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle); pair index
+  /// ((k - 1) n_obs + o) n_cand + j.
   struct ContactGrid {
     std::vector<double> s;                     ///< nodes s_0 = 0 < ... < s_n = L
     std::vector<int> piece;                    ///< per step k -> k + 1: its piece (or 0)
     std::vector<int> knot;                     ///< per node: the interior knot there, or -1
     std::vector<rod::ContactOutline> outline;  ///< per node
     int n_obs = 0;
-    int pairs() const { return (static_cast<int>(s.size()) - 1) * n_obs; }
+    int n_cand = 1;  ///< candidates per section (the most any node's outline has)
+    int per_node() const { return n_obs * n_cand; }
+    int pairs() const { return (static_cast<int>(s.size()) - 1) * per_node(); }
   };
   /// One IVP with contact forces: the state at each node before its contact jump (and its
   /// knot jump), the gaps of all pairs, y(L) and the tip residual.
@@ -239,6 +243,7 @@ struct ShootingSolver::Impl : internal::TipConditions {
   double contact_fraction = 1.0;  // load fraction of contact_ivp (cold-start continuation)
   std::optional<ode::Integrator> contact_step;  // one step of the fine level's method
   ContactIvp contact_iv, contact_trial, contact_fd;
+  std::vector<rod::SectionGap> candidates;  // section_gaps of one node and obstacle
 
   Options options;
   // IVP levels: the fine one (Options::integrator), the coarse one (Options::coarse_steps)
