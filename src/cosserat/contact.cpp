@@ -163,6 +163,17 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
   // The active-set update (docs/conventions.md "Contact in the shooting method"): of each
   // run of consecutive penetrating open nodes the deepest enters; negative multipliers leave
   // (after a cycle, only the most negative of each run of consecutive active nodes).
+  // A trial point that moves a node farther than its clearance plus half the obstacle's
+  // thickness might have passed through the obstacle (a thin one looks clear from both
+  // sides): the line search backs off instead.
+  std::vector<double> half_thickness;
+  for (const rod::Obstacle& ob : model.obstacles) {
+    double t = std::numeric_limits<double>::infinity();  // a plane's half-space
+    if (ob.type == rod::Obstacle::Type::kCylinder || ob.type == rod::Obstacle::Type::kSphere)
+      t = ob.radius_m;
+    if (ob.type == rod::Obstacle::Type::kBox) t = ob.half_extents_m.minCoeff();
+    half_thickness.push_back(0.5 * t);
+  }
   auto update_active = [&](const std::vector<char>& in_now, const std::vector<double>& l,
                            const ContactIvp& iv, bool one_per_run, bool release,
                            std::vector<char>& out) {
@@ -171,7 +182,11 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       int deepest = -1, most_negative = -1;
       for (int k = 0; k <= n_nodes; ++k) {
         const int i = k < n_nodes ? k * g.per_node() + col : -1;
-        const bool violates = i >= 0 && !in_now[i] && iv.gap[i].gap_m < -gap_tol;
+        // Before the set has settled only deep penetrations enter (a quarter of the
+        // obstacle's half thickness: it must not be passed through).
+        const double depth =
+            release ? gap_tol : std::max(gap_tol, 0.25 * half_thickness[col / g.n_cand]);
+        const bool violates = i >= 0 && !in_now[i] && iv.gap[i].gap_m < -depth;
         if (violates && (deepest < 0 || iv.gap[i].gap_m < iv.gap[deepest].gap_m)) deepest = i;
         if (!violates && deepest >= 0) {
           out[deepest] = 1;
@@ -209,17 +224,6 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
   Eigen::MatrixXd J;
   std::vector<double> lam_t;
   const Eigen::VectorXd typ = typical_scale();
-  // A trial point that moves a node farther than its clearance plus half the obstacle's
-  // thickness might have passed through the obstacle (a thin one looks clear from both
-  // sides): the line search backs off instead.
-  std::vector<double> half_thickness;
-  for (const rod::Obstacle& ob : model.obstacles) {
-    double t = std::numeric_limits<double>::infinity();  // a plane's half-space
-    if (ob.type == rod::Obstacle::Type::kCylinder || ob.type == rod::Obstacle::Type::kSphere)
-      t = ob.radius_m;
-    if (ob.type == rod::Obstacle::Type::kBox) t = ob.half_extents_m.minCoeff();
-    half_thickness.push_back(0.5 * t);
-  }
   auto tunnels = [&](const ContactIvp& trial) {
     for (int k = 1; k <= n_nodes; ++k) {
       const double moved = (trial.y_node[static_cast<std::size_t>(k)].segment<3>(kP) -
@@ -314,10 +318,11 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     x = xt;
     lam = lam_t;
     std::swap(contact_iv, contact_trial);
-    // Multipliers leave only once the iteration on the set has (nearly) converged: the signs
-    // of a half-converged step are not reliable. Penetrating pairs enter at once (a node must
-    // not pass through a thin obstacle), except those released at the last such update until
-    // the set has converged again (they would re-enter at once, and the set cycle).
+    // The set changes only once the iteration on it has (nearly) converged: the signs and
+    // gaps of a half-converged step are not reliable (a pair released on them comes back at
+    // once, and the set cycles). Only deep penetrations enter at once (a node must not pass
+    // through a thin obstacle), except those released at the last update until the set has
+    // converged again.
     std::vector<char> next = in;
     const bool settled = Ft.lpNorm<Eigen::Infinity>() <= kSettledResidual;
     update_active(in, lam, contact_iv, cautious, settled, next);
