@@ -3,6 +3,7 @@
 // primal-dual active-set Newton iteration on (x, lambda_A) and the contact results.
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,9 @@ constexpr double kForwardStep = 1.4901161193847656e-08;
 /// Scaled residual of the iteration on one active set below which the set is updated
 /// (about sqrt of the tolerance: Newton is then a step or two from the end).
 constexpr double kSettledResidual = 1e-5;
+/// ... or after this many Newton steps on one set (a set whose own solution is far, e.g. two
+/// adjacent nodes on a curved obstacle pulling and pushing, converges slowly).
+constexpr int kMaxStepsPerSet = 4;
 
 }  // namespace
 
@@ -216,6 +220,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     in = start;
   }
   std::vector<char> recent(static_cast<std::size_t>(n_pairs), 0);  // released last
+  int on_this_set = 0;                  // Newton steps since the active set last changed
   std::vector<std::vector<char>> seen;  // the active sets visited (cycle detection)
   bool cautious = false;                // after a cycle: one pair per contiguous zone
   bool changed = true;
@@ -224,12 +229,14 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
   Eigen::MatrixXd J;
   std::vector<double> lam_t;
   const Eigen::VectorXd typ = typical_scale();
-  auto tunnels = [&](const ContactIvp& trial) {
+  auto tunnels = [&](const ContactIvp& trial, const std::vector<char>& active_now) {
     for (int k = 1; k <= n_nodes; ++k) {
       const double moved = (trial.y_node[static_cast<std::size_t>(k)].segment<3>(kP) -
                             contact_iv.y_node[static_cast<std::size_t>(k)].segment<3>(kP))
                                .norm();
       for (int col = 0; col < g.per_node(); ++col) {
+        // An active pair is held on the surface by its own equation.
+        if (active_now[(k - 1) * g.per_node() + col]) continue;
         const double clear = std::max(0.0, contact_iv.gap[(k - 1) * g.per_node() + col].gap_m);
         if (moved > clear + half_thickness[static_cast<std::size_t>(col / g.n_cand)]) return true;
       }
@@ -302,7 +309,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       xt = x + t * dz.head(nx);
       lam_t = lam;
       for (int a = 0; a < na; ++a) lam_t[active[a]] += t * dz[nx + a];
-      if (contact_ivp(act, xt, lam_t, 0, contact_trial) && !tunnels(contact_trial)) {
+      if (contact_ivp(act, xt, lam_t, 0, contact_trial) && !tunnels(contact_trial, in)) {
         stack_residual(contact_trial.r, contact_trial.gap, active, L, Ft);
         if (0.5 * Ft.squaredNorm() <= (1.0 - 2.0 * kArmijo * t) * phi) {
           accepted = true;
@@ -314,6 +321,10 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       why = "line search found no decrease of the contact residual along the Newton direction";
       return Summary::Status::kLineSearchFailed;
     }
+    if (std::getenv("TCASIM_CONTACT_DEBUG"))
+      std::fprintf(stderr, "  t %.3e |dz_x| %.3e |dz_lam| %.3e cond %.3e\n", t, dz.head(nx).norm(),
+                   dz.tail(na).norm(),
+                   J.jacobiSvd().singularValues()(0) / J.jacobiSvd().singularValues()(nz - 1));
     ++summary.iterations;
     x = xt;
     lam = lam_t;
@@ -324,7 +335,9 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     // through a thin obstacle), except those released at the last update until the set has
     // converged again.
     std::vector<char> next = in;
-    const bool settled = Ft.lpNorm<Eigen::Infinity>() <= kSettledResidual;
+    ++on_this_set;
+    const bool settled =
+        Ft.lpNorm<Eigen::Infinity>() <= kSettledResidual || on_this_set >= kMaxStepsPerSet;
     update_active(in, lam, contact_iv, cautious, settled, next);
     if (settled) {
       for (int i = 0; i < n_pairs; ++i) recent[i] = in[i] && !next[i];
@@ -334,6 +347,7 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       }
     }
     changed = next != in;
+    if (changed) on_this_set = 0;
     if (std::getenv("TCASIM_CONTACT_DEBUG")) {
       for (int i = 0; i < n_pairs; ++i)
         if (in[i] || next[i])
