@@ -3,12 +3,9 @@
 // primal-dual active-set Newton iteration on (x, lambda_A) and the contact results.
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
@@ -251,9 +248,6 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     const int na = static_cast<int>(active.size());
     stack_residual(contact_iv.r, contact_iv.gap, active, L, F);
     summary.residual = F.lpNorm<Eigen::Infinity>();
-    if (std::getenv("TCASIM_CONTACT_DEBUG"))
-      std::fprintf(stderr, "DBG it %d na %d |F| %.3e changed %d cautious %d ivps %d\n", it, na,
-                   summary.residual, changed, cautious, ivp_count);
     if (!changed && summary.residual <= options.tolerance) return Summary::Status::kConverged;
     if (it >= options.max_iterations) {
       why = "reached max_iterations = " + std::to_string(options.max_iterations) +
@@ -321,10 +315,6 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       why = "line search found no decrease of the contact residual along the Newton direction";
       return Summary::Status::kLineSearchFailed;
     }
-    if (std::getenv("TCASIM_CONTACT_DEBUG"))
-      std::fprintf(stderr, "  t %.3e |dz_x| %.3e |dz_lam| %.3e cond %.3e\n", t, dz.head(nx).norm(),
-                   dz.tail(na).norm(),
-                   J.jacobiSvd().singularValues()(0) / J.jacobiSvd().singularValues()(nz - 1));
     ++summary.iterations;
     x = xt;
     lam = lam_t;
@@ -348,19 +338,6 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     }
     changed = next != in;
     if (changed) on_this_set = 0;
-    if (std::getenv("TCASIM_CONTACT_DEBUG")) {
-      for (int i = 0; i < n_pairs; ++i)
-        if (in[i] || next[i])
-          std::fprintf(stderr, "  pair %d in %d next %d lam %.3e gap %.3e\n", i, in[i], next[i],
-                       lam[i], contact_iv.gap[i].gap_m);
-      std::fprintf(stderr, "  x %s\n",
-                   [&] {
-                     std::string t;
-                     for (int j = 0; j < nx; ++j) t += std::to_string(x[j]) + " ";
-                     return t;
-                   }()
-                       .c_str());
-    }
     if (changed) {
       if (!cautious && std::find(seen.begin(), seen.end(), next) != seen.end()) cautious = true;
       seen.push_back(in);
