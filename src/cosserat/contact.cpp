@@ -160,13 +160,9 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     why = "the IVP with contact forces failed at the start";
     return Summary::Status::kInitialPointFailed;
   }
-  // The active set: pairs with lambda > 0 on entry, then every pair that penetrates.
-  // The active-set update (docs/conventions.md "Contact in the shooting method"): of each
-  // run of consecutive penetrating open nodes the deepest enters; negative multipliers leave
-  // (after a cycle, only the most negative of each run of consecutive active nodes).
-  // A trial point that moves a node farther than its clearance plus half the obstacle's
-  // thickness might have passed through the obstacle (a thin one looks clear from both
-  // sides): the line search backs off instead.
+  // Half the thickness of each obstacle (radius, smallest half extent; a plane's half-space
+  // is infinitely thick): how deep a node may go before it must enter the active set, and how
+  // far it may move in one step (see `tunnels`).
   std::vector<double> half_thickness;
   for (const rod::Obstacle& ob : model.obstacles) {
     double t = std::numeric_limits<double>::infinity();  // a plane's half-space
@@ -175,6 +171,10 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     if (ob.type == rod::Obstacle::Type::kBox) t = ob.half_extents_m.minCoeff();
     half_thickness.push_back(0.5 * t);
   }
+  // The active-set update (docs/conventions.md "Contact in the shooting method"): of each
+  // run of consecutive penetrating open nodes the deepest enters; with `release`, negative
+  // multipliers leave (one_per_run: only the most negative of each run of consecutive
+  // active nodes).
   auto update_active = [&](const std::vector<char>& in_now, const std::vector<double>& l,
                            const ContactIvp& iv, bool one_per_run, bool release,
                            std::vector<char>& out) {
@@ -206,26 +206,31 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       }
     }
   };
+  // The starting set: the pairs with lambda > 0 on entry (a warm start), updated.
   std::vector<char> in(static_cast<std::size_t>(n_pairs), 0);
   for (int i = 0; i < n_pairs; ++i) {
     in[i] = lam[i] > 0.0;
     if (!in[i]) lam[i] = 0.0;
   }
+  bool changed = false;
   {
     std::vector<char> start;
     update_active(in, lam, contact_iv, false, true, start);
+    changed = start != in;
     in = start;
   }
   std::vector<char> recent(static_cast<std::size_t>(n_pairs), 0);  // released last
   int on_this_set = 0;                  // Newton steps since the active set last changed
   std::vector<std::vector<char>> seen;  // the active sets visited (cycle detection)
   bool cautious = false;                // after a cycle: one pair per contiguous zone
-  bool changed = true;
   std::vector<int> active;
   Eigen::VectorXd F, Ft, dz, xt;
   Eigen::MatrixXd J;
   std::vector<double> lam_t;
   const Eigen::VectorXd typ = typical_scale();
+  // A trial point that moves a node farther than its clearance plus half the obstacle's
+  // thickness might have passed through the obstacle (a thin one looks clear from both
+  // sides): the line search backs off instead.
   auto tunnels = [&](const ContactIvp& trial, const std::vector<char>& active_now) {
     for (int k = 1; k <= n_nodes; ++k) {
       const double moved = (trial.y_node[static_cast<std::size_t>(k)].segment<3>(kP) -
