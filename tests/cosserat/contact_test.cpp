@@ -341,6 +341,30 @@ TEST(ContactCylinder, FingerBendsOverPeg) {
   EXPECT_LE(std::abs(force[2] - force[1]), dR_da * (1.0 / 128));
 }
 
+// A contact set that does not settle within max_iterations is a status, with the last
+// iterate kept: the heavy rod on the floor needs more than two steps per load step.
+TEST(ContactStatus, NotSettledKeepsLastIterate) {
+  rod::RodModel m = horizontal_steel_rod(Vector3d(0.0, 0.0, 0.002));
+  m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
+  m.obstacles.push_back(floor_plane());
+  Options o = grid_options(64);
+  o.max_iterations = 2;
+  ShootingSolver solver(m, o);
+  const rod::Loads act = rod::Loads::from_model(m);
+  Solution sol;
+  const Summary s = solver.solve(act, sol);
+  EXPECT_EQ(s.status, Summary::Status::kContactNotSettled);
+  EXPECT_STREQ(to_string(s.status), "contact_not_settled");
+  EXPECT_NE(s.message.find("max_iterations = 2"), std::string::npos) << s.message;
+  EXPECT_FALSE(sol.valid);
+  ASSERT_EQ(sol.unknowns.size(), solver.unknown_count());
+  EXPECT_TRUE(sol.unknowns.allFinite());
+  const rod::Result res = solver.make_result(act, sol, s);
+  EXPECT_FALSE(res.converged);
+  EXPECT_EQ(res.status, "contact_not_settled");
+  EXPECT_EQ(res.contacts.size(), 1u);
+}
+
 TEST(ContactOptions, RefusesCvodeWithObstacles) {
   rod::RodModel m = propped_cantilever(0.5, 0.0);
   Options o;
