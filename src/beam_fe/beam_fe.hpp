@@ -15,6 +15,13 @@
 /// as a global unknown with the residual T_i - F_tca(l_i - rest_length_i, temperatures)
 /// (bordered system). Gravity and the tip force are dead loads; the tip moment is fixed in
 /// the world frame (virtual work M_e . dtheta_W, i.e. m(L) = M_e as in the shooting solver).
+///
+/// Obstacles (rod::RodModel::obstacles, rod/obstacle.hpp) touch the mesh nodes: every free
+/// node against every obstacle and contact candidate of its section (rod::section_gaps) has
+/// a contact force lambda n at p + c with a multiplier lambda >= 0 as an unknown and the
+/// complementarity row min(lambda, k g) = 0 (k = max(EA, GA)/L); each Newton step solves the
+/// contact problem linearized at the iterate exactly, so the contact set (primal-dual active
+/// set) is updated every iteration (docs/conventions.md "Contact in the FE").
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
@@ -50,6 +57,10 @@ struct Options {
   int max_load_steps = 200;        ///< load-step attempts (accepted + rejected)
   double initial_load_step = 1.0;  ///< first load-factor increment in (0, 1]
   double min_load_step = 1e-6;     ///< give up when a halved increment falls below this
+  /// With obstacles: Newton iterations of one load step that may change the contact set
+  /// (active pairs); one more change fails the step (Summary::Status::kContactNotSettled
+  /// when no load step can then reach lambda = 1).
+  int max_contact_changes = 12;
   /// More points strictly inside (0, L) where the mesh puts a node, as at a breakpoint of the
   /// body's profiles (the FE dynamics passes the breakpoints of a viscosity profile). Empty
   /// (the default): the mesh of the body's own breakpoints and anchors.
@@ -66,6 +77,13 @@ struct State {
   /// along the normal for a normal-only contact. Zero without a constraint.
   Eigen::Vector3d tip_reaction_W_N = Eigen::Vector3d::Zero();
   double load_factor = 0.0;  ///< lambda of the last accepted load step
+  /// With obstacles: the contact multiplier lambda >= 0 of every contact pair [N]: per free
+  /// node k = 1 .. nodes - 1, per obstacle o, per contact candidate c of its section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle), index ((k - 1) n_obstacles + o)
+  /// n_candidates + c (the normal force on the rod at that candidate's touching point). Empty
+  /// without obstacles. It carries the contact set of a warm start: a pair is active where
+  /// lambda - k g > 0.
+  std::vector<double> contact_lambda_N;
 };
 
 /// Outcome of a solve.
@@ -74,15 +92,21 @@ struct Summary {
     /// At load factor 1, every residual row |r_i| <= tolerance_abs + tolerance_rel * scale
     /// + floor_i, where r holds nodal forces [N], moments [N m] and TCA rows T_i - F_tca
     /// [N] and tip-constraint rows k_c (c_j . (p_tip - p_target(lambda))) [N] (k_c =
-    /// max(EA, GA)/L, c_j the held world directions); scale = max(||f_ext||_inf, max_i c_i
-    /// |T_i|, ||tip reaction||_inf) (external nodal loads incl. the tip moment); floor_i is the
+    /// max(EA, GA)/L, c_j the held world directions) and contact rows min(lambda, k g) [N]
+    /// with an unchanged contact set since the previous iterate; scale = max(||f_ext||_inf,
+    /// max_i c_i |T_i|, ||tip reaction||_inf, max |lambda|) (external nodal loads incl. the
+    /// tip moment); floor_i is the
     /// round-off level of the row (Discretization::round_off_floor:
     /// 10 eps nodes max(EA, GA) for force and TCA rows, 10 eps nodes max(EI, GJ)/L plus
     /// that times h for moment rows; constraint rows as force rows).
     kConverged,
     kStepTooSmall,   ///< a load increment halved below Options::min_load_step failed
     kLoadStepLimit,  ///< Options::max_load_steps attempts without reaching lambda = 1
-    kNotRun,         ///< a default-constructed summary: no solve filled it
+    /// With obstacles: the last failed load step changed the contact set more than
+    /// Options::max_contact_changes times and no smaller step reached lambda = 1; the
+    /// returned state is that step's last Newton iterate (at its load factor).
+    kContactNotSettled,
+    kNotRun,  ///< a default-constructed summary: no solve filled it
   };
   Status status = Status::kNotRun;
   bool converged() const { return status == Status::kConverged; }
@@ -104,7 +128,7 @@ struct Summary {
   std::string message;  ///< why it stopped (empty when converged)
 };
 
-/// "converged", "step_too_small", "load_step_limit" or "not_run".
+/// "converged", "step_too_small", "load_step_limit", "contact_not_settled" or "not_run".
 const char* to_string(Summary::Status s);
 
 /// Element-level quantities (for tests): residual and consistent tangent in the
@@ -170,12 +194,35 @@ class Discretization {
   int order() const { return order_; }
   int node_count() const { return elements_ * order_ + 1; }
   /// Unknowns: 6 per free node (the base node is clamped), then one per TCA actuator, then
-  /// the tip reaction components along the held directions (3 pinned, 1 normal-only, 0 free).
+  /// the tip reaction components along the held directions (3 pinned, 1 normal-only, 0 free),
+  /// then the contact multipliers (State::contact_lambda_N).
   int dof_count() const {
-    return 6 * (node_count() - 1) + static_cast<int>(tca_actuators_.size()) + constraint_count();
+    return 6 * (node_count() - 1) + static_cast<int>(tca_actuators_.size()) + constraint_count() +
+           contact_count();
   }
   /// Number of held tip directions: 3 (pinned), 1 (normal-only contact) or 0.
   int constraint_count() const { return static_cast<int>(held_directions_W_.size()); }
+  /// Number of contact multipliers: (nodes - 1) x obstacles x candidates (0 without obstacles).
+  int contact_count() const { return (node_count() - 1) * contact_pairs_per_node(); }
+  /// Contact pairs of one node: obstacles x the section's candidates (rod::section_gaps).
+  int contact_pairs_per_node() const {
+    return static_cast<int>(model_->obstacles.size()) * contact_candidates_;
+  }
+  /// The node of contact pair j (State::contact_lambda_N's order).
+  int contact_node(int j) const { return j / contact_pairs_per_node() + 1; }
+  /// k = max(EA, GA)/L [N/m]: the contact rows k g are forces, as the tip-constraint rows.
+  double contact_stiffness_N_m() const { return contact_stiffness_N_m_; }
+  /// The contact set of `state`: per (node, obstacle) pair (State::contact_lambda_N's
+  /// order), 1 where lambda - k g > 0 (the row k g = 0 holds), 0 where it is open (lambda = 0).
+  std::vector<char> contact_set(const State& state) const;
+  /// One rod::ContactSample per free node and contact candidate against obstacle o: s, p + c,
+  /// lambda n where lambda > 0 (zero otherwise), the gap g.
+  std::vector<rod::ContactSample> contact_samples(const State& state, int obstacle) const;
+  /// What the clamp applies to the rod (world frame, moment about the base point) at load
+  /// factor lambda: the base node's rows of the internal forces of the first element minus
+  /// the base node's share of the weight (the clamp's reaction keeps the base node in
+  /// equilibrium). Strings are internal forces and are included in the element's rows.
+  rod::Wrench base_reaction(const State& state, const LoadCase& loads, double lambda) const;
   /// Prescribed tip position at load factor lambda along the held directions:
   /// p_ref + lambda (p_target - p_ref), p_ref the stress-free tip [m, world].
   Eigen::Vector3d tip_target_W_m(double lambda) const;
@@ -190,12 +237,19 @@ class Discretization {
   /// make_load_case of `loads` on this mesh (its node masses, the model's tip mass).
   LoadCase load_case(const rod::Loads& loads) const;
 
+  /// The rows of the contact multipliers in `residual`.
+  enum class ContactRows {
+    kComplementarity,  ///< min(lambda, k g): zero at a solution of the contact problem
+    kOpen,  ///< lambda: every pair open (the tangent the solver condenses the contact onto)
+  };
   /// Residual at load factor lambda under `loads` (and the tangent when `tangent` is
   /// non-null; its sparsity pattern is the same on every call): internal forces, the TCA rows
   /// at the loads' segment temperatures ramped by lambda (rod::ramp_segments), the tip
-  /// constraint, minus LoadCase::subtract.
+  /// constraint, minus LoadCase::subtract, minus the contact forces lambda G with the contact
+  /// rows `rows`.
   Eigen::VectorXd residual(const State& state, const LoadCase& loads, double lambda,
-                           Eigen::SparseMatrix<double>* tangent = nullptr) const;
+                           Eigen::SparseMatrix<double>* tangent = nullptr,
+                           ContactRows rows = ContactRows::kComplementarity) const;
 
   /// Applies an increment dx (dof_count) to a state: p += dp, R <- R exp(dtheta), T += dT,
   /// tip reaction += sum_j c_j dF_j.
@@ -215,7 +269,8 @@ class Discretization {
   /// Strains at every quadrature point.
   std::vector<PointStrain> strains(const State& state) const;
 
-  /// Scale of the relative tolerance at lambda: max(||f_ext||_inf, max_i c_i |T_i|).
+  /// Scale of the relative tolerance at lambda: max(||f_ext||_inf, max_i c_i |T_i|, the tip
+  /// reaction's and the contact multipliers' largest magnitude).
   double residual_scale(const State& state, const LoadCase& loads, double lambda) const;
 
   /// Round-off level of the residual rows: force rows (and TCA rows) [N], moment rows [N m].
@@ -247,6 +302,22 @@ class Discretization {
   /// Sets the tensions of tension drives to lambda times their value in `loads`.
   void apply_prescribed_tensions(const LoadCase& loads, State& state, double lambda) const;
 
+  /// Contact pair j (State::contact_lambda_N's order) at `state`: the gap g [m] and the
+  /// generalized direction G = (n, R^T (c x n)) of its force on the node's dofs (force rows
+  /// world, moment rows in the node's material frame; the force is lambda G). With `dG`,
+  /// `dg`: their derivatives in the node's increments (dp, dtheta material, as retract), by
+  /// central differences of rod::section_gaps (steps 1e-7 L and 1e-5 rad); where the
+  /// candidate does not exist on both sides of a step (g = +infinity: a rectangle's edge
+  /// candidate) dg is the first variation n . dp + (c x n) . dtheta_W and dG is zero. A
+  /// candidate that does not exist has g = +infinity and G = 0.
+  struct ContactPair {
+    double gap_m = 0.0;
+    Eigen::Matrix<double, 6, 1> G = Eigen::Matrix<double, 6, 1>::Zero();
+    rod::SectionGap section;  ///< g, n, c of rod::section_gap
+  };
+  ContactPair contact_pair(const State& state, int j, Eigen::Matrix<double, 6, 6>* dG = nullptr,
+                           Eigen::Matrix<double, 1, 6>* dg = nullptr) const;
+
  private:
   struct Quadrature {
     std::vector<double> xi, weight;
@@ -262,7 +333,10 @@ class Discretization {
   std::vector<Eigen::Vector3d> held_directions_W_;  // tip constraint: unit world directions c_j
   Eigen::Vector3d tip_reference_W_m_ = Eigen::Vector3d::Zero();  // stress-free tip position
   Eigen::Vector3d tip_goal_W_m_ = Eigen::Vector3d::Zero();       // tip_constraint.position
-  double constraint_stiffness_N_m_ = 0.0;  // k_c = max(EA, GA)/L: constraint rows in N
+  double constraint_stiffness_N_m_ = 0.0;      // k_c = max(EA, GA)/L: constraint rows in N
+  double contact_stiffness_N_m_ = 0.0;         // k = max(EA, GA)/L: contact rows in N
+  std::vector<rod::ContactOutline> outlines_;  // per node: its section's contact outline
+  int contact_candidates_ = 0;  // contact candidates per section (rod::contact_candidate_count)
   // K_nu, K_omega and omega* at s = 0: a uniform body's at every s, evaluated once.
   rod::SectionStiffness base_stiffness_;
   Eigen::Vector3d base_omega_star_ = Eigen::Vector3d::Zero();
@@ -274,6 +348,10 @@ class Discretization {
   mutable std::vector<int> element_slots_;  // per element, (6 n)^2 value indices or -1
   mutable std::vector<int> tca_slots_;  // per TCA unknown: row then column entries, then diagonal
   mutable std::vector<int> constraint_slots_;  // per held direction: 3 row, then 3 column entries
+  // Per contact pair: 6 row entries (k g row), 6 column entries (lambda column), diagonal.
+  mutable std::vector<int> contact_slots_;
+  // Per free node k: the 36 entries of its diagonal block (row-major), for contact tangents.
+  mutable std::vector<int> node_block_slots_;
 };
 
 /// The model's probes on `state` (Discretization::pose_at at each probe's s).
@@ -313,8 +391,11 @@ class Solver {
 /// with full steps (backtracking only out of the model's domain); once the residual contracts by
 /// 1e-2 per iteration the last factorization is reused (chord steps) until the contraction
 /// degrades. KLU pivots once and then refactorizes with that pivot order while its condition
-/// estimate holds. Throws InputError for bad options; never throws for non-convergence: `state`
-/// then holds the last accepted configuration.
+/// estimate holds. With obstacles the contact is not ramped (the obstacles are always there):
+/// each Newton iteration solves the linearized contact problem exactly, without chord steps,
+/// and the multipliers of a warm start (State::contact_lambda_N) start its contact set.
+/// Throws InputError for bad options; never throws for non-convergence: `state` then holds the
+/// last accepted configuration (for kContactNotSettled, the last iterate of the failed step).
 ///
 /// `loads` replace the model's own (drive tensions and temperatures, tip wrench, gravity;
 /// loads.applied(model) with its load scale; InputError naming the field when they do not fit
@@ -328,7 +409,9 @@ Summary solve(const rod::RodModel& model, const Options& options, State& state);
 
 /// Fills a result file record: method "fe", discretization {elements, order}, tip pose,
 /// actuator tensions and elongations (coil contact at the segments of `loads`), three-point
-/// bending radius, centerline at nodes.
+/// bending radius, centerline at nodes, the base reaction (Discretization::base_reaction at
+/// the state's load factor) and, per obstacle, rod::summarize_contact of the contact samples
+/// (Discretization::contact_samples) about the base point.
 rod::Result make_result(const rod::RodModel& model, const rod::Loads& loads, const Options& options,
                         const State& state, const Summary& summary);
 /// make_result with the model's own loads.

@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "common/so3.hpp"
 #include "rod/closed_form.hpp"
+#include "rod/obstacle.hpp"
 
 namespace tcasim::beam_fe {
 namespace {
@@ -170,6 +171,20 @@ Discretization::Discretization(const rod::RodModel& model, const Options& option
     }
     constraint_stiffness_N_m_ = model.shear_extension_stiffness().maxCoeff() / model.length_m;
   }
+  if (!model.obstacles.empty()) {
+    contact_stiffness_N_m_ = model.shear_extension_stiffness().maxCoeff() / model.length_m;
+    // Each node's outline; the tip's from the left (its section at s = L).
+    for (int e = 0; e < elements_; ++e) {
+      for (int a = e == 0 ? 0 : 1; a <= order_; ++a) {
+        const double s = element_s0_m_[static_cast<std::size_t>(e)] +
+                         element_h_m_[static_cast<std::size_t>(e)] * a / order_;
+        outlines_.push_back(rod::contact_outline_at(
+            model, s, e + 1 == elements_ && a == order_ ? rod::Side::kLeft : rod::Side::kRight));
+      }
+    }
+    // The section's shape (and so its outline's kind) is the same at every s.
+    contact_candidates_ = rod::contact_candidate_count(outlines_.back().kind);
+  }
 }
 
 Vector3d Discretization::tip_target_W_m(double lambda) const {
@@ -210,6 +225,7 @@ State Discretization::reference_state() const {
       }
     }
     st.tensions_N.assign(model.actuators.size(), 0.0);
+    st.contact_lambda_N.assign(static_cast<std::size_t>(contact_count()), 0.0);
     return st;
   }
   for (int k = 0; k < nodes; ++k) {
@@ -222,6 +238,7 @@ State Discretization::reference_state() const {
     st.q_WB.push_back((q0 * so3::exp_quaternion(phi)).normalized());
   }
   st.tensions_N.assign(model.actuators.size(), 0.0);
+  st.contact_lambda_N.assign(static_cast<std::size_t>(contact_count()), 0.0);
   st.tip_reaction_W_N.setZero();
   st.load_factor = 0.0;
   return st;
@@ -250,6 +267,8 @@ void Discretization::retract(State& state, const VectorXd& dx) const {
   for (int j = 0; j < constraint_count(); ++j) {
     state.tip_reaction_W_N += dx[first_constraint + j] * held_directions_W_[j];
   }
+  const int first_contact = first_constraint + constraint_count();
+  for (int j = 0; j < contact_count(); ++j) state.contact_lambda_N[j] += dx[first_contact + j];
 }
 
 VectorXd Discretization::difference(const State& a, const State& b) const {
@@ -267,6 +286,9 @@ VectorXd Discretization::difference(const State& a, const State& b) const {
   for (int j = 0; j < constraint_count(); ++j) {
     dx[first_constraint + j] = held_directions_W_[j].dot(a.tip_reaction_W_N - b.tip_reaction_W_N);
   }
+  const int first_contact = first_constraint + constraint_count();
+  for (int j = 0; j < contact_count(); ++j)
+    dx[first_contact + j] = a.contact_lambda_N[j] - b.contact_lambda_N[j];
   return dx;
 }
 
@@ -331,6 +353,7 @@ double Discretization::residual_scale(const State& state, const LoadCase& loads,
     scale = std::max(scale, model_->actuators[i].count * std::abs(state.tensions_N[i]));
   }
   if (constraint_count() > 0) scale = std::max(scale, state.tip_reaction_W_N.cwiseAbs().maxCoeff());
+  for (const double lambda_N : state.contact_lambda_N) scale = std::max(scale, std::abs(lambda_N));
   return scale;
 }
 
@@ -388,13 +411,16 @@ namespace {
 void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
   // Built directly in compressed column form: the rows of a free node's column are the dofs
   // of the contiguous node range of the elements containing it, then every TCA row, then
-  // (tip position columns) the constraint rows. A TCA column holds all free and TCA rows; a
-  // constraint column the tip position rows. Every slot follows by arithmetic.
+  // (tip position columns) the constraint rows, then the node's contact rows. A TCA column
+  // holds all free and TCA rows; a constraint column the tip position rows; a contact column
+  // its node's rows and its own diagonal. Every slot follows by arithmetic.
   const int n = dof_count();
   const int nodes = node_count();
   const int free_dofs = 6 * (nodes - 1);
   const int n_tca = static_cast<int>(tca_actuators_.size());
   const int tca_end = free_dofs + n_tca;
+  const int contact_begin = tca_end + constraint_count();
+  const int per_node = contact_pairs_per_node();
   const int tip_pos = free_dofs - 6;
   std::vector<int> first_row(free_dofs), range_rows(free_dofs);
   std::vector<int> outer(n + 1, 0);
@@ -406,11 +432,14 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
       const int lo = std::max(e_first * order_, 1), hi = (e_last + 1) * order_;
       first_row[j] = 6 * (lo - 1);
       range_rows[j] = 6 * (hi - lo + 1);
-      count = range_rows[j] + n_tca + (j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0);
+      count = range_rows[j] + n_tca + (j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0) +
+              per_node;
     } else if (j < tca_end) {
       count = tca_end;
-    } else {
+    } else if (j < contact_begin) {
       count = 3;
+    } else {
+      count = 7;
     }
     outer[j + 1] = outer[j] + count;
   }
@@ -424,12 +453,17 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
       for (int i = 0; i < range_rows[j]; ++i) *it++ = first_row[j] + i;
       for (int t = free_dofs; t < tca_end; ++t) *it++ = t;
       if (j >= tip_pos && j < tip_pos + 3) {
-        for (int c = tca_end; c < n; ++c) *it++ = c;
+        for (int c = tca_end; c < contact_begin; ++c) *it++ = c;
       }
+      for (int o = 0; o < per_node; ++o) *it++ = contact_begin + (j / 6) * per_node + o;
     } else if (j < tca_end) {
       for (int i = 0; i < tca_end; ++i) *it++ = i;
-    } else {
+    } else if (j < contact_begin) {
       for (int i = 0; i < 3; ++i) *it++ = tip_pos + i;
+    } else {
+      const int node_row = 6 * ((j - contact_begin) / per_node);
+      for (int i = 0; i < 6; ++i) *it++ = node_row + i;
+      *it++ = j;
     }
   }
   std::fill(K.valuePtr(), K.valuePtr() + outer[n], 0.0);
@@ -458,11 +492,33 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
     tca_slots_.push_back(outer[t] + t);
   }
   constraint_slots_.clear();
-  for (int c = tca_end; c < n; ++c) {
+  for (int c = tca_end; c < contact_begin; ++c) {
     for (int i = 0; i < 3; ++i)
       constraint_slots_.push_back(outer[tip_pos + i] + range_rows[tip_pos + i] + n_tca +
                                   (c - tca_end));
     for (int i = 0; i < 3; ++i) constraint_slots_.push_back(outer[c] + i);
+  }
+  contact_slots_.clear();
+  node_block_slots_.clear();
+  if (per_node > 0) {
+    for (int c = contact_begin; c < n; ++c) {
+      const int node_col = 6 * ((c - contact_begin) / per_node);
+      const int o = (c - contact_begin) % per_node;
+      for (int i = 0; i < 6; ++i) {
+        const int j = node_col + i;  // the k g row's entry in the node's column j
+        const int held = j >= tip_pos && j < tip_pos + 3 ? constraint_count() : 0;
+        contact_slots_.push_back(outer[j] + range_rows[j] + n_tca + held + o);
+      }
+      for (int i = 0; i < 7; ++i) contact_slots_.push_back(outer[c] + i);
+    }
+    for (int k = 1; k < nodes; ++k) {
+      for (int i = 0; i < 6; ++i) {
+        for (int j = 0; j < 6; ++j) {
+          const int gi = 6 * (k - 1) + i, gj = 6 * (k - 1) + j;
+          node_block_slots_.push_back(outer[gj] + gi - first_row[gj]);
+        }
+      }
+    }
   }
 #ifndef NDEBUG
   for (int e = 0; e < elements_; ++e)
@@ -473,16 +529,30 @@ void Discretization::assemble_pattern(Eigen::SparseMatrix<double>& K) const {
           assert(element_slots_[(static_cast<std::size_t>(e) * nd + i) * nd + j] ==
                  slot(K, gi, gj));
       }
-  for (int c = tca_end; c < n; ++c)
+  for (int c = tca_end; c < contact_begin; ++c)
     for (int i = 0; i < 3; ++i) {
       assert(constraint_slots_[6 * (c - tca_end) + i] == slot(K, c, tip_pos + i));
       assert(constraint_slots_[6 * (c - tca_end) + 3 + i] == slot(K, tip_pos + i, c));
     }
+  for (int c = contact_begin; c < n; ++c) {
+    const int node_col = 6 * ((c - contact_begin) / per_node);
+    const int* cs = &contact_slots_[13 * static_cast<std::size_t>(c - contact_begin)];
+    for (int i = 0; i < 6; ++i) {
+      assert(cs[i] == slot(K, c, node_col + i));
+      assert(cs[6 + i] == slot(K, node_col + i, c));
+    }
+    assert(cs[12] == slot(K, c, c));
+  }
+  for (int k = 1; k < nodes && per_node > 0; ++k)
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        assert(node_block_slots_[36 * (k - 1) + 6 * i + j] ==
+               slot(K, 6 * (k - 1) + i, 6 * (k - 1) + j));
 #endif
 }
 
 VectorXd Discretization::residual(const State& state, const LoadCase& loads, double lambda,
-                                  Eigen::SparseMatrix<double>* tangent) const {
+                                  Eigen::SparseMatrix<double>* tangent, ContactRows rows) const {
   const rod::RodModel& model = *model_;
   const int n = dof_count();
   const int nodes = node_count();
@@ -557,7 +627,143 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
       }
     }
   }
+  // Contact (docs/conventions.md "Contact in the FE"): pair j of node k and obstacle o has
+  // the multiplier lambda_j; its force lambda_j G_j (G = (n, R^T (c x n))) acts on node k
+  // (r = internal - external - contact), and its row is the complementarity function
+  // min(lambda, k g): k g where lambda - k g > 0 (active), lambda elsewhere, with its
+  // generalized derivative as tangent; or (kOpen) lambda for every pair.
+  const int first_contact = first_constraint + constraint_count();
+  Eigen::Matrix<double, 6, 6> dG;
+  Eigen::Matrix<double, 1, 6> dg;
+  for (int j = 0; j < contact_count(); ++j) {
+    const int k = contact_node(j);
+    const double lambda_N = state.contact_lambda_N[static_cast<std::size_t>(j)];
+    const ContactPair pair =
+        contact_pair(state, j, tangent ? &dG : nullptr, tangent ? &dg : nullptr);
+    const double kg = contact_stiffness_N_m_ * pair.gap_m;
+    const bool active = rows == ContactRows::kComplementarity && lambda_N - kg > 0.0;
+    const int node = 6 * (k - 1);
+    r.segment<6>(node) -= lambda_N * pair.G;
+    r[first_contact + j] = active ? kg : lambda_N;
+    if (!tangent) continue;
+    const int* cs = &contact_slots_[13 * static_cast<std::size_t>(j)];
+    for (int i = 0; i < 6; ++i) {
+      if (active) values[cs[i]] += contact_stiffness_N_m_ * dg[i];
+      values[cs[6 + i]] -= pair.G[i];
+    }
+    if (!active) values[cs[12]] += 1.0;
+    if (lambda_N != 0.0) {
+      const int* bs = &node_block_slots_[36 * static_cast<std::size_t>(k - 1)];
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) values[bs[6 * a + b]] -= lambda_N * dG(a, b);
+    }
+  }
   return r;
+}
+
+Discretization::ContactPair Discretization::contact_pair(const State& state, int j,
+                                                         Eigen::Matrix<double, 6, 6>* dG,
+                                                         Eigen::Matrix<double, 1, 6>* dg) const {
+  const int node = contact_node(j);
+  const int in_node = j % contact_pairs_per_node();
+  const rod::Obstacle& obs =
+      model_->obstacles[static_cast<std::size_t>(in_node / contact_candidates_)];
+  const std::size_t candidate = static_cast<std::size_t>(in_node % contact_candidates_);
+  const rod::ContactOutline& outline = outlines_[static_cast<std::size_t>(node)];
+  auto evaluate = [&](const Vector3d& p, const Matrix3d& R) {
+    ContactPair out;
+    out.section = rod::section_gaps(obs, outline, p, R)[candidate];
+    out.gap_m = out.section.gap_m;
+    if (std::isfinite(out.gap_m)) {
+      out.G.head<3>() = out.section.normal_W;
+      out.G.tail<3>() = R.transpose() * out.section.offset_W_m.cross(out.section.normal_W);
+    }
+    return out;
+  };
+  const Vector3d& p = state.p_W_m[static_cast<std::size_t>(node)];
+  const Matrix3d R = state.q_WB[static_cast<std::size_t>(node)].toRotationMatrix();
+  ContactPair pair = evaluate(p, R);
+  if (dG == nullptr && dg == nullptr) return pair;
+  if (dG) dG->setZero();
+  if (dg) dg->setZero();
+  if (!std::isfinite(pair.gap_m)) return pair;
+  // Central differences over the node's increments (dp world, dtheta material: R exp(dtheta)).
+  // Steps: 1e-7 L in position and 1e-5 rad in rotation keep the truncation error (step /
+  // curvature radius of the obstacle or outline)^2 and the round-off eps |p| / step both
+  // near 1e-8 of the derivatives for section and obstacle sizes down to ~1e-3 L.
+  const double dp = 1e-7 * model_->length_m, dth = 1e-5;
+  Eigen::Matrix<double, 6, 6> dG_fd;
+  Eigen::Matrix<double, 1, 6> dg_fd;
+  for (int i = 0; i < 6; ++i) {
+    Vector3d p_plus = p, p_minus = p;
+    Matrix3d R_plus = R, R_minus = R;
+    double step;
+    if (i < 3) {
+      step = dp;
+      p_plus[i] += dp;
+      p_minus[i] -= dp;
+    } else {
+      step = dth;
+      R_plus = R * so3::exp(dth * Vector3d::Unit(i - 3));
+      R_minus = R * so3::exp(-dth * Vector3d::Unit(i - 3));
+    }
+    const ContactPair plus = evaluate(p_plus, R_plus), minus = evaluate(p_minus, R_minus);
+    if (!std::isfinite(plus.gap_m) || !std::isfinite(minus.gap_m)) {
+      // A candidate at the edge of its existence: its first variation, no force tangent.
+      if (dg) *dg = pair.G.transpose();
+      return pair;
+    }
+    dG_fd.col(i) = (plus.G - minus.G) / (2.0 * step);
+    dg_fd[i] = (plus.gap_m - minus.gap_m) / (2.0 * step);
+  }
+  if (dG) *dG = dG_fd;
+  if (dg) *dg = dg_fd;
+  return pair;
+}
+
+std::vector<char> Discretization::contact_set(const State& state) const {
+  std::vector<char> set(static_cast<std::size_t>(contact_count()), 0);
+  for (int j = 0; j < contact_count(); ++j) {
+    const double kg = contact_stiffness_N_m_ * contact_pair(state, j).gap_m;
+    set[static_cast<std::size_t>(j)] =
+        state.contact_lambda_N[static_cast<std::size_t>(j)] - kg > 0.0;
+  }
+  return set;
+}
+
+std::vector<rod::ContactSample> Discretization::contact_samples(const State& state,
+                                                                int obstacle) const {
+  std::vector<rod::ContactSample> samples;
+  for (int k = 1; k < node_count(); ++k) {
+    for (int c = 0; c < contact_candidates_; ++c) {
+      const int j = (k - 1) * contact_pairs_per_node() + obstacle * contact_candidates_ + c;
+      const ContactPair pair = contact_pair(state, j);
+      const double lambda_N = state.contact_lambda_N.empty()
+                                  ? 0.0
+                                  : state.contact_lambda_N[static_cast<std::size_t>(j)];
+      rod::ContactSample sample;
+      sample.s_m = state.s_m[static_cast<std::size_t>(k)];
+      sample.point_W_m = state.p_W_m[static_cast<std::size_t>(k)] + pair.section.offset_W_m;
+      sample.force_W_N =
+          lambda_N > 0.0 ? Vector3d(lambda_N * pair.section.normal_W) : Vector3d::Zero();
+      sample.gap_m = pair.gap_m;
+      samples.push_back(sample);
+    }
+  }
+  return samples;
+}
+
+rod::Wrench Discretization::base_reaction(const State& state, const LoadCase& loads,
+                                          double lambda) const {
+  // Node 0's rows of the first element: its internal force (world) and moment (material
+  // frame of node 0: the virtual work M_W . dtheta_W = (R^T M_W) . dtheta_B). The clamp
+  // balances them with the base node's weight share, which acts at the base point.
+  ElementEvaluation ev;
+  evaluate_element(state, 0, state.tensions_N, false, ev);
+  rod::Wrench w;
+  w.force_W_N = ev.residual.head<3>() - lambda * node_mass_kg_[0] * loads.loads.gravity_W_m_s2;
+  w.moment_W_Nm = state.q_WB[0].toRotationMatrix() * ev.residual.segment<3>(3);
+  return w;
 }
 
 Integration parse_integration(const std::string& text) {

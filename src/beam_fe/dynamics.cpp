@@ -125,6 +125,9 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
   if (m.tip_constraint) {
     throw DomainError("FE dynamics: a tip_constraint is not supported in dynamics yet");
   }
+  if (!m.obstacles.empty()) {
+    throw DomainError("FE dynamics: obstacles are not supported in dynamics yet");
+  }
   if (o.viscosity_Pa_s) {
     require(std::isfinite(*o.viscosity_Pa_s) && *o.viscosity_Pa_s >= 0.0, "dynamics.viscosity_Pa_s",
             *o.viscosity_Pa_s, "must be >= 0");

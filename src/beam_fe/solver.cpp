@@ -1,6 +1,7 @@
 // Newton's method with backtracking line search and adaptive load stepping.
 #include <fmt/format.h>
 
+#include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <cassert>
 #include <chrono>
@@ -27,7 +28,8 @@ constexpr int kMaxBacktracks = 12;
 /// factorization (chord steps): Newton is then in its quadratic phase, and a chord step
 /// contracts by about the relative size of the last Newton correction.
 constexpr double kChordContraction = 1e-2;
-/// Grow the load increment after a step converging within this many iterations.
+/// Grow the load increment after a step converging within this many iterations (not
+/// counting those that changed the contact set).
 constexpr int kEasyIterations = 4;
 
 /// UMFPACK through its plugin (umfpack_plugin_abi.hpp): one factorization object, which
@@ -116,14 +118,19 @@ struct StepResult {
   double scale = 0.0;
   std::string why;
   VectorXd residual;  ///< r at the converged state (empty otherwise)
+  /// Failed because the contact set changed more than Options::max_contact_changes times;
+  /// `st` then holds the last iterate.
+  bool contact_not_settled = false;
+  int contact_changes = 0;  ///< iterations that changed the contact set
 };
 
 /// The residual (and tangent); false where the state leaves the model's domain (a
 /// TCA stretched past its fiber length: DomainError) or the result is not finite.
 bool evaluate(const Discretization& disc, const LoadCase& loads, const State& st, double lambda,
-              SpMat* K, VectorXd& r, std::string* why = nullptr) {
+              SpMat* K, VectorXd& r, std::string* why = nullptr,
+              Discretization::ContactRows rows = Discretization::ContactRows::kComplementarity) {
   try {
-    r = disc.residual(st, loads, lambda, K);
+    r = disc.residual(st, loads, lambda, K, rows);
   } catch (const DomainError& e) {
     if (why) *why = e.what();
     return false;
@@ -207,6 +214,244 @@ StepResult newton(const Discretization& disc, const LoadCase& loads, const Optio
   }
 }
 
+/// mu_P = -W_PP^-1 q_P on the pairs P (zero elsewhere); false when not finite.
+bool solve_on(const Eigen::MatrixXd& W, const VectorXd& q, const std::vector<int>& P, VectorXd& z) {
+  z = VectorXd::Zero(q.size());
+  if (P.empty()) return true;
+  const int f = static_cast<int>(P.size());
+  Eigen::MatrixXd W_PP(f, f);
+  VectorXd q_P(f);
+  for (int a = 0; a < f; ++a) {
+    q_P[a] = q[P[a]];
+    for (int b = 0; b < f; ++b) W_PP(a, b) = W(P[a], P[b]);
+  }
+  const VectorXd z_P = Eigen::PartialPivLU<Eigen::MatrixXd>(W_PP).solve(-q_P);
+  if (!z_P.allFinite()) return false;
+  for (int a = 0; a < f; ++a) z[P[a]] = z_P[a];
+  return true;
+}
+
+/// Solves the linear complementarity problem mu >= 0, w = W mu + q >= 0, mu . w = 0, i.e. the
+/// bound-constrained quadratic program min 1/2 mu^T W mu + q^T mu, mu >= 0 for the (nearly
+/// symmetric, positive definite) W = D K^-1 G^T, by a primal active-set method in the manner
+/// of Lawson and Hanson's NNLS: mu stays feasible; the pair with the most negative w joins the
+/// closed pairs P, mu moves toward the minimizer on P and stops where a multiplier reaches 0
+/// (that pair leaves P). Each change lowers the objective, so no set repeats (finite for a
+/// positive definite W). Warm start: P = the pairs `closed` marks, less those whose multiplier
+/// on P comes out <= 0. Returns the closed pairs in `closed`; false when 3 c + 50 changes pass
+/// or a solve is not finite.
+bool solve_lcp(const Eigen::MatrixXd& W, const VectorXd& q, double eps_w, std::vector<char>& closed,
+               VectorXd& mu) {
+  const int c = static_cast<int>(q.size());
+  std::vector<int> P;
+  for (int i = 0; i < c; ++i)
+    if (closed[i]) P.push_back(i);
+  VectorXd z;
+  while (true) {
+    if (!solve_on(W, q, P, z)) return false;
+    std::vector<int> kept;
+    for (const int i : P)
+      if (z[i] > 0.0) kept.push_back(i);
+    if (kept.size() == P.size()) break;
+    P = std::move(kept);
+  }
+  mu = z;
+  for (int change = 0; change < 3 * c + 50; ++change) {
+    const VectorXd w = W * mu + q;
+    std::vector<char> in(static_cast<std::size_t>(c), 0);
+    for (const int i : P) in[i] = 1;
+    int worst = -1;
+    for (int i = 0; i < c; ++i)
+      if (!in[i] && w[i] < -eps_w && (worst < 0 || w[i] < w[worst])) worst = i;
+    if (worst < 0) {
+      closed.assign(static_cast<std::size_t>(c), 0);
+      for (const int i : P) closed[i] = 1;
+      return true;
+    }
+    P.push_back(worst);
+    while (true) {
+      if (!solve_on(W, q, P, z)) return false;
+      double alpha = 1.0;
+      for (const int i : P)
+        if (z[i] <= 0.0) alpha = std::min(alpha, mu[i] > z[i] ? mu[i] / (mu[i] - z[i]) : 0.0);
+      mu += alpha * (z - mu);
+      if (alpha == 1.0) break;
+      std::vector<int> kept;
+      for (const int i : P) {
+        if (z[i] <= 0.0 && mu[i] <= 0.0 + 1e-15 * std::abs(mu.maxCoeff())) {
+          mu[i] = 0.0;
+        } else {
+          kept.push_back(i);
+        }
+      }
+      if (kept.size() == P.size()) {
+        // The step's limiting pair: drop it.
+        int limiting = -1;
+        for (const int i : P)
+          if (z[i] <= 0.0 && (limiting < 0 || mu[i] < mu[limiting])) limiting = i;
+        mu[limiting] = 0.0;
+        kept.erase(std::find(kept.begin(), kept.end(), limiting));
+      }
+      P = std::move(kept);
+      ++change;
+    }
+  }
+  return false;
+}
+
+/// The Newton step of the contact problem (docs/conventions.md "Contact in the FE"): the
+/// tangent K of every pair open (factorized in `linear`, residual r_open) gives the step
+/// dx0 = -K^-1 r_open with every multiplier zero and, per pair j, the response x_j = K^-1 e_j
+/// to a unit multiplier (its force G_j on its node); the linearized gaps are b + W mu with b_i
+/// = g_i + D_i dx0 and W_ij = D_i x_j (D_i = dg_i/dx by central differences), and the new
+/// multipliers mu solve that complementarity problem exactly (solve_lcp): dx = dx0 + sum_j
+/// mu_j x_j. Only the pairs closed now or penetrating at dx0 enter the dense problem at first;
+/// a pair left out whose linearized gap comes out negative joins and the problem is solved
+/// again. False (with `why`) when a solve fails or the pivoting does not end.
+bool contact_step(const Discretization& disc, const Options& options, const State& st,
+                  const VectorXd& r_open, LinearSystem& linear, VectorXd& dx, std::string& why) {
+  const int n = disc.dof_count(), m = disc.contact_count(), first = n - m;
+  VectorXd dx0;
+  if (!linear.solve(-r_open, dx0) || !dx0.allFinite()) {
+    why = "the linear solve failed (singular or not finite)";
+    return false;
+  }
+  VectorXd b(m);
+  std::vector<Eigen::Matrix<double, 1, 6>> D(static_cast<std::size_t>(m));
+  for (int j = 0; j < m; ++j) {
+    const int node = disc.contact_node(j);
+    const double g = disc.contact_pair(st, j, nullptr, &D[j]).gap_m;
+    b[j] = g + D[j].transpose().dot(dx0.segment<6>(6 * (node - 1)));
+  }
+  // Feasibility tolerance of a linearized gap: a tenth of the convergence test's absolute
+  // tolerance and round-off floor of a force row, over k.
+  const double eps_w =
+      0.1 * (options.tolerance_abs + disc.round_off_floor().force) / disc.contact_stiffness_N_m();
+  std::vector<int> pairs;  // the pairs of the dense problem
+  std::vector<char> in(static_cast<std::size_t>(m), 0);
+  for (int j = 0; j < m; ++j) {
+    if (st.contact_lambda_N[j] > 0.0 || b[j] < eps_w) {
+      pairs.push_back(j);
+      in[j] = 1;
+    }
+  }
+  std::vector<VectorXd> x(static_cast<std::size_t>(m));
+  VectorXd mu;
+  while (true) {
+    for (const int j : pairs) {
+      if (x[j].size() > 0) continue;
+      VectorXd unit = VectorXd::Zero(n);
+      unit[first + j] = 1.0;
+      if (!linear.solve(unit, x[j]) || !x[j].allFinite()) {
+        why = "the linear solve failed (singular or not finite)";
+        return false;
+      }
+    }
+    const int c = static_cast<int>(pairs.size());
+    Eigen::MatrixXd W(c, c);
+    VectorXd q(c);
+    std::vector<char> closed(static_cast<std::size_t>(c));
+    for (int a = 0; a < c; ++a) {
+      const int i = pairs[a], node_i = 6 * (disc.contact_node(i) - 1);
+      q[a] = b[i];
+      closed[a] = st.contact_lambda_N[i] > 0.0;
+      for (int c2 = 0; c2 < c; ++c2)
+        W(a, c2) = D[i].transpose().dot(x[pairs[c2]].segment<6>(node_i));
+    }
+    if (!solve_lcp(W, q, eps_w, closed, mu)) {
+      why = fmt::format("the linearized contact problem of {} pairs did not settle", c);
+      return false;
+    }
+    bool grown = false;
+    for (int j = 0; j < m; ++j) {
+      if (in[j]) continue;
+      const int node_j = 6 * (disc.contact_node(j) - 1);
+      double w = b[j];
+      for (int a = 0; a < c; ++a) w += D[j].transpose().dot(x[pairs[a]].segment<6>(node_j)) * mu[a];
+      if (w < -eps_w) {
+        pairs.push_back(j);
+        in[j] = 1;
+        grown = true;
+      }
+    }
+    if (!grown) break;
+  }
+  dx = dx0;
+  for (std::size_t a = 0; a < pairs.size(); ++a)
+    dx += mu[static_cast<Eigen::Index>(a)] * x[pairs[a]];
+  return true;
+}
+
+/// Newton's method with obstacles at one load factor: every iteration solves the contact
+/// problem linearized at the iterate exactly (contact_step), so the contact set of the next
+/// iterate is that of the linearized problem; the set (State::contact_lambda_N's pairs with
+/// lambda - k g > 0) settles as Newton converges. Converged when the complementarity residual
+/// (ContactRows::kComplementarity) is within tolerance and the last step left the set
+/// unchanged; a step that changes it more than Options::max_contact_changes times fails with
+/// contact_not_settled. No chord steps (the set may change with every tangent).
+StepResult newton_contact(const Discretization& disc, const LoadCase& loads, const Options& options,
+                          double lambda, State& st, SpMat& K, LinearSystem& linear) {
+  using Rows = Discretization::ContactRows;
+  StepResult out;
+  disc.apply_prescribed_tensions(loads, st, lambda);
+  VectorXd r;
+  if (!evaluate(disc, loads, st, lambda, nullptr, r, &out.why)) return out;
+  std::vector<char> set = disc.contact_set(st);
+  bool set_changed = false;  // the last step changed the contact set
+  for (int it = 0;; ++it) {
+    out.residual_inf = r.lpNorm<Eigen::Infinity>();
+    out.scale = disc.residual_scale(st, loads, lambda);
+    if (!set_changed && disc.within_tolerance(r, st, loads, lambda, options)) {
+      out.converged = true;
+      out.residual = std::move(r);
+      return out;
+    }
+    if (set_changed && ++out.contact_changes > options.max_contact_changes) {
+      out.contact_not_settled = true;
+      out.why = fmt::format(
+          "the contact set did not settle: {} Newton iterations changed it (max_contact_changes "
+          "= {}; ||r||_inf = {:.3e})",
+          out.contact_changes, options.max_contact_changes, out.residual_inf);
+      return out;
+    }
+    if (it == options.max_iterations) {
+      out.why = fmt::format("no convergence in {} Newton iterations (||r||_inf = {:.3e})",
+                            options.max_iterations, out.residual_inf);
+      return out;
+    }
+    ++out.iterations;
+    VectorXd r_open;
+    if (!evaluate(disc, loads, st, lambda, &K, r_open, &out.why, Rows::kOpen)) return out;
+    if (!linear.factorize(K)) {
+      out.why = "the tangent matrix could not be factorized (singular or not finite)";
+      return out;
+    }
+    VectorXd dx;
+    if (!contact_step(disc, options, st, r_open, linear, dx, out.why)) return out;
+    // Backtracking only out of the model's domain, as in newton.
+    double alpha = 1.0;
+    bool accepted = false;
+    std::string trial_why;
+    for (int bt = 0; bt <= kMaxBacktracks; ++bt, alpha *= 0.5) {
+      State trial = st;
+      disc.retract(trial, alpha * dx);
+      VectorXd rt;
+      if (!evaluate(disc, loads, trial, lambda, nullptr, rt, &trial_why)) continue;
+      st = std::move(trial);
+      r = std::move(rt);
+      accepted = true;
+      break;
+    }
+    if (!accepted) {
+      out.why = "every backtracked Newton step failed: " + trial_why;
+      return out;
+    }
+    std::vector<char> next = disc.contact_set(st);
+    set_changed = next != set;
+    set = std::move(next);
+  }
+}
+
 /// Summary::equilibrium_residual of the residual r at load factor 1.
 double equilibrium_residual(const Discretization& disc, const VectorXd& r, double F_c) {
   const int free_dofs = 6 * (disc.node_count() - 1);
@@ -229,6 +474,8 @@ const char* to_string(Summary::Status s) {
       return "step_too_small";
     case Summary::Status::kLoadStepLimit:
       return "load_step_limit";
+    case Summary::Status::kContactNotSettled:
+      return "contact_not_settled";
     case Summary::Status::kNotRun:
       return "not_run";
   }
@@ -255,6 +502,10 @@ Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
   Summary summary;
   const LoadCase loads = disc.load_case(loads_in);  // validates the loads
   if (!state_matches(disc, state)) state = disc.reference_state();
+  if (static_cast<int>(state.contact_lambda_N.size()) != disc.contact_count()) {
+    // A state of the same mesh without (these) obstacles: every pair starts open.
+    state.contact_lambda_N.assign(static_cast<std::size_t>(disc.contact_count()), 0.0);
+  }
   auto finish = [&](Summary& s) -> Summary {
     s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
@@ -267,6 +518,7 @@ Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
   double step = std::min(options.initial_load_step, 1.0 - lambda);
   int attempts = 0;
   StepResult last;
+  State unsettled;  // the last iterate of the last step whose contact set did not settle
   // The last two accepted states: their secant extrapolates the next load step's start.
   State previous;
   double lambda_previous = -1.0;
@@ -293,8 +545,13 @@ Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
         predicted = true;
       }
     }
-    last = newton(disc, loads, options, target, trial, K, linear);
+    last = disc.contact_count() > 0 ? newton_contact(disc, loads, options, target, trial, K, linear)
+                                    : newton(disc, loads, options, target, trial, K, linear);
     summary.iterations += last.iterations;
+    if (last.contact_not_settled) {
+      unsettled = trial;
+      unsettled.load_factor = target;
+    }
     if (last.converged) {
       previous = std::move(state);
       lambda_previous = lambda;
@@ -310,7 +567,9 @@ Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
         summary.status = Summary::Status::kConverged;
         break;
       }
-      if (last.iterations <= kEasyIterations) step *= 2.0;
+      // Iterations that moved the contact set are the active-set search, not a sign of a hard
+      // step (none without obstacles).
+      if (last.iterations - last.contact_changes <= kEasyIterations) step *= 2.0;
       step = std::min(step, 1.0 - lambda);
       continue;
     }
@@ -337,6 +596,13 @@ Summary Solver::solve(const rod::Loads& loads_in, State& state) const {
                                     options.min_load_step, lambda, last.why);
       break;
     }
+  }
+  if (!summary.converged() && last.contact_not_settled) {
+    // The last failure was a contact set that did not settle: report it with its last iterate.
+    summary.status = Summary::Status::kContactNotSettled;
+    summary.message = fmt::format("at load factor {:.6g}: {}", unsettled.load_factor, last.why);
+    state = std::move(unsettled);
+    lambda = state.load_factor;
   }
   summary.load_factor = lambda;
   summary.characteristic_force_N = rod::characteristic_force_N(model, loads.loads);
@@ -408,6 +674,12 @@ rod::Result Solver::make_result(const rod::Loads& loads_in, const State& state,
   for (const Eigen::Quaterniond& q : state.q_WB)
     res.centerline_R_WB.push_back(q.toRotationMatrix());
   res.probes = probe_results(disc, state);
+  res.base_reaction = disc.base_reaction(state, disc.load_case(loads_in), state.load_factor);
+  for (std::size_t o = 0; o < model.obstacles.size(); ++o) {
+    res.contacts.push_back(rod::summarize_contact(model.obstacles[o],
+                                                  disc.contact_samples(state, static_cast<int>(o)),
+                                                  model.base_position_W_m));
+  }
   try {
     res.bending_radius_m = rod::three_point_inner_radius(model, res.centerline_s_m,
                                                          res.centerline_p_W_m, res.centerline_R_WB);

@@ -44,6 +44,8 @@ const char* fe_status_name(beam_fe::Summary::Status s) {
       return "step too small";
     case beam_fe::Summary::Status::kLoadStepLimit:
       return "load-step limit";
+    case beam_fe::Summary::Status::kContactNotSettled:
+      return "contact not settled";
     case beam_fe::Summary::Status::kNotRun:
       return "not run";
   }
