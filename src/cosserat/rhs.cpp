@@ -372,6 +372,47 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
   return Y.allFinite();
 }
 
+bool RodRhs::point_wrench_jump(double s, const Vec3& f_B, const Vec3& m_B,
+                               Eigen::VectorXd& y) const {
+  const Local& k = local(s);
+  const Vec3 Kn = k.Kn, Kw = k.Kw;
+  const rod::Side side = s < piece_mid ? rod::Side::kRight : rod::Side::kLeft;
+  bool loaded = false;
+  for (int i = 0; i < n_act; ++i) loaded = loaded || (cT[i] != 0.0 && runs(piece, i));
+  Vec3 e = y.segment<3>(kNu), om = y.segment<3>(kOmega);
+  if (!loaded) {
+    // W = (K_nu e, K_omega (omega - omega*)): the jump is linear in the strains.
+    y.segment<3>(kNu) = e - f_B.cwiseQuotient(Kn);
+    y.segment<3>(kOmega) = om - m_B.cwiseQuotient(Kw);
+    return y.head(dim).allFinite();
+  }
+  Local loc = k;  // local() may be overwritten by the section wrench's evaluations
+  SectionWrench w;
+  section_wrench(*this, s, side, piece, loc, e, om, w);
+  Vec6 target = w.W;
+  target.head<3>() -= f_B;
+  target.tail<3>() -= m_B;
+  const double scale = std::max(w.W.cwiseAbs().maxCoeff(), target.cwiseAbs().maxCoeff());
+  e -= f_B.cwiseQuotient(Kn);
+  om -= m_B.cwiseQuotient(Kw);
+  bool converged = false;
+  for (int it = 0; it < 30 && !converged; ++it) {
+    section_wrench(*this, s, side, piece, loc, e, om, w);
+    const Vec6 F = w.W - target;
+    const Vec6 dz = w.M.partialPivLu().solve(F);
+    if (!dz.allFinite()) return false;
+    e -= dz.head<3>();
+    om -= dz.tail<3>();
+    converged = F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
+                dz.cwiseAbs().maxCoeff() <=
+                    1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * L + 1e-300);
+  }
+  if (!converged) return false;
+  y.segment<3>(kNu) = e;
+  y.segment<3>(kOmega) = om;
+  return y.head(dim).allFinite();
+}
+
 void RodRhs::set_parameters(const rod::Loads& act, double lambda, const Eigen::VectorXd& x) {
   for (int i = 0; i < n_act; ++i) {
     const int k = unknown_of[i];

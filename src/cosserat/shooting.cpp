@@ -32,6 +32,8 @@ const char* to_string(Summary::Status s) {
       return "continuation_failed";
     case Summary::Status::kInitialPointFailed:
       return "initial_point_failed";
+    case Summary::Status::kContactNotSettled:
+      return "contact_not_settled";
     case Summary::Status::kNotRun:
       return "not_run";
   }
@@ -62,6 +64,7 @@ ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o,
   level = &fine_level;
   // make_result samples at every step node of the fine level's grid (output_level): the
   // fine IVPs can record those samples for it (see Samples).
+  if (!m.obstacles.empty()) build_contact_grid();
   record_samples = ode::is_fixed_step(options.integrator.method) &&
                    options.kinematics == Kinematics::kFlat && options.centerline_intervals == 0;
   sample_recorder = [this](double s, const Eigen::VectorXd& yy) {
@@ -95,6 +98,18 @@ Options ShootingSolver::Impl::validated(const rod::RodModel& m, Options o) {
           "options.integrator.method", "cvode",
           "must be rk4 with options.kinematics = lie_group (a fixed-step method)");
   o.integrator.output_intervals = 0;
+  if (!m.obstacles.empty()) {
+    // Contact points are the step nodes of one fixed-step grid (docs/conventions.md
+    // "Contact in the shooting method"); the coarse levels do not carry the multipliers.
+    require(ode::is_fixed_step(o.integrator.method), "options.integrator.method", "cvode",
+            "must be a fixed-step method (rk4, rk6, rk8) with obstacles: the contact points are "
+            "its step nodes");
+    require(o.kinematics == Kinematics::kFlat, "options.kinematics", "lie_group",
+            "must be flat with obstacles");
+    require(o.centerline_intervals == 0, "options.centerline_intervals", o.centerline_intervals,
+            "must be 0 (every step node) with obstacles");
+    o.coarse_steps = 0;
+  }
   return o;
 }
 
@@ -107,6 +122,7 @@ Options ShootingSolver::Impl::with_jacobian_fallback(Options o, int n_unknowns) 
 }
 
 Summary ShootingSolver::Impl::solve(const rod::Loads& act, Solution& sol) {
+  if (!model.obstacles.empty()) return contact_solve(act, sol);  // 3-D layout only
   if (sol.valid && sol.unknowns.allFinite()) layout->reduce_unknowns(sol.unknowns);
   Summary summary = solve_in_layout(act, sol);
   summary.planar = layout->reduced();
@@ -316,7 +332,15 @@ rod::Result ShootingSolver::Impl::make_result(const rod::Loads& act, const Solut
   // The accepted point's samples when the memo holds this IVP (the one output_level would
   // integrate: the same grid, right-hand side and parameters), else the IVP again.
   bool sampled = true;
-  if (acc_samples.valid && memo_answers(x, &fine_level)) {
+  if (!model.obstacles.empty()) {
+    // The IVP with the solution's contact forces (zero when the multipliers are missing).
+    std::vector<double> lam = sol.contact_lambda_N;
+    if (static_cast<int>(lam.size()) != contact_grid.pairs())
+      lam.assign(static_cast<std::size_t>(contact_grid.pairs()), 0.0);
+    const ode::Observer node_observer = observer;
+    sampled = contact_ivp(act, x, lam, 0, contact_iv, &node_observer);
+    if (sampled) res.contacts = contact_results(lam, contact_iv);
+  } else if (acc_samples.valid && memo_answers(x, &fine_level)) {
     Eigen::VectorXd yy(dim);
     for (std::size_t k = 0; k < acc_samples.s.size(); ++k) {
       yy = Eigen::Map<const Eigen::VectorXd>(acc_samples.y.data() + k * dim, dim);
@@ -359,6 +383,30 @@ rod::Result ShootingSolver::Impl::make_result(const rod::Loads& act, const Solut
   return res;
 }
 
+rod::Wrench ShootingSolver::Impl::base_reaction(const Eigen::VectorXd& x,
+                                                const rod::Result& res) const {
+  // The total section wrench at s = 0 (the rod's n(0), m(0) and the strings leaving the base)
+  // balances everything applied to the rod beyond it (TipConditions::equilibrium): the clamp
+  // applies its opposite.
+  const Mat3& R0 = model.R_WB0;
+  Vec3 n = R0 * K_nu.cwiseProduct(x.head<3>());  // x holds nu(0) - nu*
+  Vec3 m = R0 * K_omega.cwiseProduct(x.segment<3>(3) - omega_star);
+  for (int i = 0; i < n_act; ++i) {
+    if (!from_base(i)) continue;
+    const rod::Routing& ro = model.actuators[i].routing;
+    const Vec3 r0 = ro.r(0.0);
+    const Vec3 t0 =
+        R0 * (nu_star + x.head<3>() + x.segment<3>(3).cross(r0) + ro.dr(0.0)).normalized();
+    const Vec3 f = count[i] * res.actuators[i].tension_N * t0;
+    n += f;
+    m += (R0 * r0).cross(f);
+  }
+  rod::Wrench w;
+  w.force_W_N = -n;
+  w.moment_W_Nm = -m;
+  return w;
+}
+
 bool ShootingSolver::Impl::probe_results(rod::Result& res,
                                          const std::vector<Eigen::VectorXd>& sample_states) {
   const std::vector<double>& s = res.centerline_s_m;
@@ -385,6 +433,7 @@ bool ShootingSolver::Impl::probe_results(rod::Result& res,
 // ---------------------------------------------------------------------------------------
 ShootingSolver::ShootingSolver(const rod::RodModel& model, const Options& options)
     : impl_(std::make_unique<Impl>(model, options, internal::make_3d_layout())) {
+  if (!model.obstacles.empty()) return;  // the planar reduction carries no multipliers
   if (auto layout = internal::make_planar_layout(model, impl_->options)) {
     reduced_ = std::make_unique<Impl>(model, options, std::move(layout));
   }
@@ -426,6 +475,10 @@ rod::Result ShootingSolver::make_result(const rod::Loads& actuation, const Solut
   Impl& sampler = reduced_ && in_plane(*reduced_->layout, actuation, solution) ? *reduced_ : *impl_;
   rod::Result res = sampler.make_result(actuation, solution, summary);
   res.status = to_string(summary.status);
+  if (solution.unknowns.size() == impl_->nx && solution.unknowns.allFinite() &&
+      res.actuators.size() == impl_->model.actuators.size()) {
+    res.base_reaction = impl_->base_reaction(solution.unknowns, res);
+  }
   res.residual = summary.equilibrium_residual;
   res.characteristic_force_N = summary.characteristic_force_N;
   return res;

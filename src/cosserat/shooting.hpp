@@ -145,6 +145,8 @@ struct Summary {
     kContinuationFailed,  ///< the direct solve failed and the continuation step fell below
                           ///< Options::min_continuation_step (or the unloaded solve failed)
     kInitialPointFailed,  ///< the IVP or a TCA law failed at the initial guess
+    kContactNotSettled,   ///< obstacles: the active set of the contact points still changed
+                          ///< (or cycled) after max_iterations active-set Newton steps
     kNotRun,              ///< a default-constructed summary: no solve filled it
   };
   Status status = Status::kNotRun;
@@ -191,6 +193,13 @@ struct Solution {
   Eigen::MatrixXd coarse_jacobian;
   std::vector<double> tensions_N;     ///< per actuator (one string)
   std::vector<double> elongations_m;  ///< per actuator (one string)
+  /// Obstacles (docs/conventions.md "Contact in the shooting method"): the contact
+  /// multiplier lambda [N] of each (grid node, obstacle, candidate) pair, index
+  /// ((k - 1) n_obstacles + o) n_candidates + j for node s_k (k = 1..steps; s_k = k L / steps
+  /// on a uniform body), model obstacle o and contact candidate j of the section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle); zero where open. A warm start
+  /// takes its active set (lambda > 0) and multipliers from here. Empty without obstacles.
+  std::vector<double> contact_lambda_N;
 
   /// A converged point of a sequence of warm-started solves (a sweep).
   struct PathPoint {

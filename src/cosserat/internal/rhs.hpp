@@ -112,6 +112,14 @@ struct RodRhs : RodProblem {
   /// `directions` > 0, Y holds the sensitivity blocks too: dz+ = M+^-1 (M- dz- + sum_i dcT_i
   /// (u_i(z-) - u_i(z+))), u_i = (qh_i, r_i x qh_i). False if the Newton iteration fails.
   bool strain_jump(std::size_t k, Eigen::VectorXd& Y, int directions) const;
+  /// A point wrench on the body at s (a contact force, docs/conventions.md "Contact in the
+  /// shooting method"): force f_B and moment m_B (about p, body frame) applied to the rod at
+  /// s make the total section wrench (rod plus the strings crossing, RodRhs::strain_jump's W)
+  /// jump by -(f_B, m_B); the strains in y (state only) become the z+ solving
+  /// W(z+) = W(z-) - (f_B, m_B), with the properties of the piece being integrated (s on
+  /// the side of its midpoint). Direct without loaded strings, else Newton. False if that
+  /// fails.
+  bool point_wrench_jump(double s, const Vec3& f_B, const Vec3& m_B, Eigen::VectorXd& y) const;
 
   // Current IVP parameters (set_parameters, before each integration).
   std::vector<double> cT;  // count * tension per actuator

@@ -11,6 +11,8 @@
 ///   warm_start.cpp        the multi-level start (coarse, middle/Richardson, coarse-grid
 ///                         correction), the path extrapolation of sweeps, TCA row refresh
 ///   initial_guess.cpp     the closed-form cold-start guess with gravity
+///   contact.cpp           obstacles: the contact grid, the IVP with the contact point
+///                         forces, the active-set Newton iteration, contact results
 /// Internal to the shooting solver.
 #include <Eigen/Core>
 #include <memory>
@@ -21,6 +23,7 @@
 #include "cosserat/internal/integration_level.hpp"
 #include "cosserat/internal/tip_conditions.hpp"
 #include "cosserat/shooting.hpp"
+#include "rod/obstacle.hpp"
 
 namespace tcasim::cosserat {
 
@@ -59,6 +62,10 @@ struct ShootingSolver::Impl : internal::TipConditions {
   double equilibrium_residual(const Eigen::VectorXd& r, double characteristic_force_N) const;
   void finish(const rod::Loads& act, const Eigen::VectorXd& x, Solution& sol, Summary& summary);
   rod::Result make_result(const rod::Loads& act, const Solution& sol, const Summary& summary);
+  /// What the clamp applies to the rod (rod::Result::base_reaction) for the 3-D unknowns x
+  /// with the actuator tensions of res: minus the total section wrench at s = 0 (the rod's
+  /// n(0), m(0) and the strings leaving the base; moment about the base point).
+  rod::Wrench base_reaction(const Eigen::VectorXd& x, const rod::Result& res) const;
   /// Fills res.probes after make_result's sampling pass: a probe at a sample from it, any other
   /// from the sample before its s integrated on to s (output_level->integrate_between).
   /// False when such an integration fails.
@@ -188,6 +195,55 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// (docs/conventions.md "Global equilibrium"), on kGuessNodes + 1 nodes; returns their mean
   /// over s and their value at s = 0.
   void load_strains(const Vec3& nu, const Vec3& omega, Vec6& mean, Vec6& base) const;
+
+  // --- contact with obstacles (contact.cpp; docs/conventions.md "Contact in the shooting
+  // method")
+  /// The contact points: the step nodes s_k (k = 1..n) of the fine level's grid (pieces
+  /// included), each against each model obstacle with each contact candidate of the section
+  /// (rod::section_gaps: 1 for a circle, 8 for a rectangle); pair index
+  /// ((k - 1) n_obs + o) n_cand + j.
+  struct ContactGrid {
+    std::vector<double> s;                     ///< nodes s_0 = 0 < ... < s_n = L
+    std::vector<int> piece;                    ///< per step k -> k + 1: its piece (or 0)
+    std::vector<int> knot;                     ///< per node: the interior knot there, or -1
+    std::vector<rod::ContactOutline> outline;  ///< per node
+    int n_obs = 0;
+    int n_cand = 1;  ///< candidates per section (the most any node's outline has)
+    int per_node() const { return n_obs * n_cand; }
+    int pairs() const { return (static_cast<int>(s.size()) - 1) * per_node(); }
+  };
+  /// One IVP with contact forces: the state at each node before its contact jump (and its
+  /// knot jump), the gaps of all pairs, y(L) and the tip residual.
+  struct ContactIvp {
+    std::vector<Eigen::VectorXd> y_node;
+    std::vector<rod::SectionGap> gap;
+    Eigen::VectorXd r;
+  };
+  void build_contact_grid();
+  /// Integrates the IVP of unknowns x with the contact forces lam[pair] n at the touching
+  /// points from node `from` to L: from 0 it starts at y(0), else at iv.y_node[from] (the
+  /// nodes and gaps before `from` are kept). At node k the state jumps by the point forces
+  /// of its pairs (RodRhs::point_wrench_jump), then by a knot's strain jump. observer (if
+  /// given) sees every node after its jumps. Sets iv.r (the tip residual) and leaves y(L)
+  /// in `y`. False when the IVP, a jump or a TCA law fails.
+  bool contact_ivp(const rod::Loads& act, const Eigen::VectorXd& x, const std::vector<double>& lam,
+                   int from, ContactIvp& iv, const ode::Observer* observer = nullptr);
+  /// The solve with obstacles: a warm start from sol's unknowns and multipliers; else (or if
+  /// that fails) a continuation in the load fraction from the unloaded rod, the full load
+  /// first, halving failed steps and doubling after successes.
+  Summary contact_solve(const rod::Loads& act, Solution& sol);
+  /// Primal-dual active-set Newton iteration on z = (x, lam of the active pairs); x, lam
+  /// in/out (the last iterate).
+  Summary::Status active_set_newton(const rod::Loads& act, Eigen::VectorXd& x,
+                                    std::vector<double>& lam, Summary& summary, std::string& why);
+  /// What the obstacles do in the solution (x, lam): one ContactResult per obstacle.
+  std::vector<rod::ContactResult> contact_results(const std::vector<double>& lam,
+                                                  const ContactIvp& iv) const;
+  ContactGrid contact_grid;
+  double contact_fraction = 1.0;  // load fraction of contact_ivp (cold-start continuation)
+  std::optional<ode::Integrator> contact_step;  // one step of the fine level's method
+  ContactIvp contact_iv, contact_trial, contact_fd;
+  std::vector<rod::SectionGap> candidates;  // section_gaps of one node and obstacle
 
   Options options;
   // IVP levels: the fine one (Options::integrator), the coarse one (Options::coarse_steps)
