@@ -119,3 +119,5 @@ BENCHMARK(BM_ContactSweepStep)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+BENCHMARK_MAIN();
