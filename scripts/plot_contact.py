@@ -60,6 +60,7 @@ def plot_heavy_rod(out_dir):
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5))
     if not params:
         note(ax, "no heavy_rod_params.csv (step 1 did not run)")
+    penetrating = []
     for i, p in enumerate(params):
         H, B, q, r = num(p["H_m"]), num(p["B_N_m2"]), num(p["q_N_m"]), num(p["radius_m"])
         floor, L = num(p["floor_z_m"]), num(p["length_m"])
@@ -77,6 +78,16 @@ def plot_heavy_rod(out_dir):
             if pts:
                 ax.plot([x for x, _ in pts], [1e3 * z for _, z in pts], ls=style, color=color, lw=1.6,
                         label=f"{method} (finest), H = {1e3 * H:.3g} mm")
+                # A centerline more than the radius below the floor: the floor was not felt.
+                if min(z for _, z in pts) < floor:
+                    penetrating.append(f"{method}, H = {1e3 * H:.3g} mm")
+    if params:
+        floors = [num(p["floor_z_m"]) for p in params]
+        h_max = max(num(p["H_m"]) for p in params)
+        ax.set_ylim(1e3 * (min(floors) - 0.5 * h_max), 1e3 * 0.5 * h_max)
+    if penetrating:
+        ax.text(0.02, 0.04, f"{len(penetrating)} solver shapes pass below the floor: contact not solved",
+                transform=ax.transAxes, fontsize=8, color="darkred")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("centerline z [mm]")
     ax.set_title("Heavy rod on a floor: shapes; triangles: closed-form touchdown l; dotted: floors")
@@ -87,7 +98,7 @@ def plot_heavy_rod(out_dir):
     # closed form (dashed), per method and gap.
     series = defaultdict(list)
     for row in ladder:
-        if row.get("converged") != "1":
+        if row.get("converged") != "1" or math.isnan(num(row.get("moment_error_vs_ref"))):
             continue
         key = (row["method"], num(row["H_m"]))
         series[key].append((num(row["level"]), num(row["moment_error_vs_ref"]), num(row["moment_error_vs_closed"])))
