@@ -751,6 +751,7 @@ int main(int argc, char** argv) {
         struct Finest {
           Vector3d tip, force;
           double tip_change = kNaN, force_change = kNaN;
+          double penetration_coarsest = kNaN, penetration_finest = kNaN;
           bool ok = false;
           std::string why;
         };
@@ -776,6 +777,8 @@ int main(int argc, char** argv) {
             f.force_change = (c.force_W_N - prev_force).norm();
             prev_tip = f.tip = o.result.tip_position_W_m;
             prev_force = f.force = c.force_W_N;
+            if (std::isnan(f.penetration_coarsest)) f.penetration_coarsest = c.max_penetration_m;
+            f.penetration_finest = c.max_penetration_m;
           }
           f.ok = all_ok;
           fin[lad.method] = f;
@@ -801,6 +804,14 @@ int main(int argc, char** argv) {
                       tip_diff, tip_bound, "m");
         gates.at_most(what + ": contact resultant difference (bound: sum of the last changes)",
                       force_diff, force_bound, "N");
+        // No penalty: a penetration the solver leaves must vanish under refinement, so the
+        // finest level's may not exceed the coarsest's.
+        for (const auto& [label, f] : fin) {
+          gates.at_most(fmt::format("{}: {} max penetration, finest level (bound: the coarsest "
+                                    "level's, {:.3e} m)",
+                                    name, label, f.penetration_coarsest),
+                        f.penetration_finest, f.penetration_coarsest, "m");
+        }
       }
       csv.commit();
       sum.commit();
