@@ -155,7 +155,7 @@ def plot_onset(out_dir):
             onset = num(mine[0]["onset"])
             if not math.isnan(onset):
                 ax_force.axvline(onset, color="grey", lw=0.8, ls="--", label="closed-form onset B / (R L)")
-        tip_load = not math.isnan(num(mine[0]["onset"]))
+        tip_load = mine[0].get("load_kind") == "tip_force_N"
         ax_path.set_title(f"{case}: tip path")
         ax_path.set_xlabel("tip x [mm]")
         ax_path.set_ylabel("tip z [mm]")

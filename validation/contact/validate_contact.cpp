@@ -869,7 +869,7 @@ int main(int argc, char** argv) {
     fmt::print("Step 5: sweeps across contact onset (warm starts)\n");
     {
       tcasim::rod::AtomicOutput csv(out_dir + "/onset_sweep.csv", "onset sweep csv");
-      csv << "case,points,method,load,tip_x_m,tip_y_m,tip_z_m,contact_force_N,in_contact,"
+      csv << "case,points,method,load_kind,load,tip_x_m,tip_y_m,tip_z_m,contact_force_N,in_contact,"
              "closed_contact_force_N,closed_tip_deflection_m,onset,converged,message\n";
       // (a) A cantilever tangent to a cylinder at its clamp, tip force rising toward it: the
       // propped cantilever's rod with the sphere replaced.
@@ -964,11 +964,12 @@ int main(int argc, char** argv) {
               }
               const Vector3d& tip = o.result.tip_position_W_m;
               fmt::print(csv,
-                         "{},{},{},{:.8e},{:.10e},{:.10e},{:.10e},{:.10e},{},{:.10e},"
+                         "{},{},{},{},{:.8e},{:.10e},{:.10e},{:.10e},{:.10e},{},{:.10e},"
                          "{:.10e},{:.10e},{},\"{}\"\n",
-                         sc.name, points, lad.method, load, tip.x(), tip.y(), tip.z(), force,
-                         c.touching ? 1 : 0, closed_force, closed_tip, sc.onset, o.ok ? 1 : 0,
-                         o.message);
+                         sc.name, points, lad.method,
+                         sc.tip_force ? "tip_force_N" : "temperature_degC", load, tip.x(), tip.y(),
+                         tip.z(), force, c.touching ? 1 : 0, closed_force, closed_tip, sc.onset,
+                         o.ok ? 1 : 0, o.message);
             }
             max_jump[refine] = jump;
             const std::string what =
