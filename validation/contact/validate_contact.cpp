@@ -544,33 +544,47 @@ int main(int argc, char** argv) {
               const double dM = prev.result.base_reaction
                                     ? std::abs(M - prev.result.base_reaction->moment_W_Nm.norm())
                                     : kNaN;
-              // Against the planar reference: within the last change of the ladder plus
-              // the reference's own error.
+              // Against the planar reference: within the last change of the ladder, the
+              // reference's own error, and the part of the reference it knows only to its
+              // order of magnitude: its shear and extension (reference - elastica). It
+              // touches down with a point force and theta(l) = 0, exact for the elastica;
+              // a shearable rod has a boundary layer there, of length sqrt(E I / (G A)),
+              // where the shear strain R / (G A) of the touchdown force turns the section
+              // (the solvers satisfy the gap at their nodes, not this end condition).
+              const double shear_M = std::abs(ref.base_moment_Nm - elastica.base_moment_Nm);
+              const double shear_F = std::abs(ref.base_force_N - elastica.base_force_N);
               gates.at_most(what +
                                 ": clamp moment vs planar reference (bound: last ladder "
-                                "change + reference error)",
-                            std::abs(M - ref.base_moment_Nm), dM + ref_error * ref.base_moment_Nm,
-                            "N m");
+                                "change + reference error + its shear part)",
+                            std::abs(M - ref.base_moment_Nm),
+                            dM + ref_error * ref.base_moment_Nm + shear_M, "N m");
               gates.at_most(what +
                                 ": clamp force vs planar reference (bound: last ladder "
-                                "change + reference error)",
-                            std::abs(F - ref.base_force_N), dF + ref_error * ref.base_force_N, "N");
-              // Against the closed form: the measured small-slope error plus the ladder's.
+                                "change + reference error + its shear part)",
+                            std::abs(F - ref.base_force_N),
+                            dF + ref_error * ref.base_force_N + shear_F, "N");
+              // Against the closed form: the measured distance closed form - reference plus
+              // the bound above.
+              gates.at_most(what +
+                                ": clamp moment vs closed form / M (bound: closed form - "
+                                "reference + the bound above)",
+                            rel(M, cf.base_moment_Nm),
+                            small_slope_m + (dM + ref_error * ref.base_moment_Nm + shear_M) /
+                                                cf.base_moment_Nm);
               gates.at_most(
                   what +
-                      ": clamp moment vs closed form / M (bound: small-slope error + last "
-                      "change)",
-                  rel(M, cf.base_moment_Nm), small_slope_m + dM / cf.base_moment_Nm);
-              gates.at_most(what +
-                                ": clamp force vs closed form / F (bound: small-slope error + last "
-                                "change)",
-                            rel(F, cf.base_force_N), small_slope_f + dF / cf.base_force_N);
-              // Touchdown: the first contact within one grid spacing of the reference's l.
+                      ": clamp force vs closed form / F (bound: closed form - "
+                      "reference + the bound above)",
+                  rel(F, cf.base_force_N),
+                  small_slope_f + (dF + ref_error * ref.base_force_N + shear_F) / cf.base_force_N);
+              // Touchdown: a solver's point force at a contact point stands for the pressure
+              // over its cell (half a spacing each side), and the touchdown is resolved to a
+              // cell (first order): the first loaded point lies within 1.5 spacings of l.
               const double h = m.length_m / lad.levels.back();
               gates.at_most(what +
                                 ": touchdown (first contact s0) vs planar reference l "
-                                "(bound: one grid spacing L / level)",
-                            std::abs(c.first_s_m - ref.free_span_m), h, "m");
+                                "(bound: 1.5 grid spacings L / level)",
+                            std::abs(c.first_s_m - ref.free_span_m), 1.5 * h, "m");
             } else {
               gates.check(what + ": comparison with the references", false,
                           "no usable finest solve: " +
