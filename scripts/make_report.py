@@ -10,7 +10,8 @@ Reads what scripts/validate.sh and the validation programs wrote into OUT_DIR:
   <program>/log.txt, <program>/*.png and a few known tables (fig5_table.csv,
   fig6_radius.csv, table1_grasp.csv, fig8_force.csv, crosscheck.csv, convergence.csv,
   shapes_summary.csv, free_vibration.csv, dt_order.csv, quasi_static_order.csv,
-  dynamic_crosscheck_summary.csv, dynamic_dt_study.csv, dynamic_h_study.csv) when present.
+  dynamic_crosscheck_summary.csv, dynamic_dt_study.csv, dynamic_h_study.csv, heavy_rod.csv,
+  heavy_rod_small_slope.csv, propped.csv, balance.csv, contact_crosscheck_summary.csv) when present.
 Without timing.csv every sub-folder holding a gates.csv is reported.
 
 The report reads the way a reviewer reads: the verdict first, then a dashboard of the
@@ -144,6 +145,11 @@ PLOT_DESCRIPTIONS = {
     "dynamic_crosscheck_h.png": "Dynamic cross-check: time-extrapolated difference against the FE element size, "
                                 "linear and quadratic elements",
     "dynamic_crosscheck_energy.png": "Dynamic cross-check: kinetic and potential energies of both methods over time",
+    "contact_heavy_rod.png": "Contact: the heavy rod's shapes over the floor for each gap H with the closed-form "
+                             "free span and touchdown point, and the clamp-moment error against the refinement "
+                             "level of both methods with the observed slope",
+    "contact_onset.png": "Contact: sweeps across contact onset, tip path and contact force against the load, with "
+                         "the closed form of the cantilever on a cylinder",
 }
 
 
@@ -351,6 +357,16 @@ KNOWN_TABLES = [
      ["case", "dt_s", "shooting_steps", "fe_elements", "difference_over_L", "at_t_s", "shooting_time_error_over_L",
       "fe_time_error_over_L", "shooting_wall_s", "fe_wall_s"]),
     ("dynamic_h_study.csv", "Dynamic cross-check: difference against the FE element size (extrapolated in dt)"),
+    ("heavy_rod_small_slope.csv", "Contact: heavy rod on a floor, closed form against the planar reference "
+     "(small-slope error)"),
+    ("heavy_rod.csv", "Contact: heavy rod on a floor, refinement ladders of both methods",
+     ["H_m", "method", "level", "converged", "base_force_N", "base_moment_Nm", "touchdown_s_m",
+      "force_error_vs_ref", "moment_error_vs_ref", "moment_error_vs_closed", "observed_order_moment", "message"]),
+    ("propped.csv", "Contact: propped cantilever, sphere reaction against P (3 L - a) / (2 a)"),
+    ("balance.csv", "Contact: global balance of each solve",
+     ["scenario", "method", "level", "converged", "has_base_reaction", "force_imbalance_N", "force_bound_N",
+      "moment_imbalance_Nm", "moment_bound_Nm", "message"]),
+    ("contact_crosscheck_summary.csv", "Contact: shooting against FE at the finest levels"),
     ("shapes_summary.csv", "Suite scenarios: tip, global equilibrium (relative imbalance), timing",
      ["scenario", "status", "iterations", "tip_x_m", "tip_y_m", "tip_z_m", "bending_radius_m", "load_scale_N",
       "force_imbalance_rel", "moment_imbalance_rel", "imbalance_8_steps", "imbalance_16_steps", "wall_time_s",
@@ -585,6 +601,38 @@ def card_dynamic_crosscheck(out_dir):
             (["case", "finest dt [s]", "difference / L", "extrapolated / L"], table), "validate_dynamic_crosscheck")
 
 
+def card_contact(out_dir):
+    """validate_contact: the heavy rod's closed-form (small-slope) error per gap and each method's finest
+    clamp-moment error against the planar reference."""
+    small = read_csv(out_dir / "validate_contact" / "heavy_rod_small_slope.csv")
+    if not small:
+        return None
+    ladder = read_csv(out_dir / "validate_contact" / "heavy_rod.csv")
+    finest = {}
+    for r in ladder:
+        key = (r.get("H_m"), r.get("method"))
+        lvl = number(r.get("level"))
+        if lvl is not None and (key not in finest or lvl > number(finest[key].get("level"))):
+            finest[key] = r
+    table = []
+    for r in small:
+        h = r.get("H_m")
+        e = number(r.get("moment_error"))
+        row = [f"{1e3 * number(h):.3g}" if number(h) is not None else "?", f"{e:.1e}" if e is not None else "-"]
+        for method in ("cosserat", "fe"):
+            f = finest.get((h, method))
+            v = number(f.get("moment_error_vs_ref")) if f and f.get("converged") == "1" else None
+            row.append(f"{v:.1e}" if v is not None else "not converged" if f else "-")
+        table.append(row)
+    balance = read_csv(out_dir / "validate_contact" / "balance.csv")
+    reported = sum(1 for r in balance if r.get("has_base_reaction") == "1")
+    return ("Contact: heavy rod on a floor (clamp moment)", f"{len(small)} gaps",
+            [f"relative clamp-moment distance to the Cosserat planar reference: the closed form's (its shear "
+             f"and extension; its small-slope error is zero for the moment), each method's at its finest level; "
+             f"base reaction reported in {reported} of {len(balance)} balance solves"],
+            (["H [mm]", "closed form", "shooting", "FE"], table), "validate_contact")
+
+
 def card_speed(out_dir, timing, run):
     table = []
     shapes = read_csv(out_dir / "validate_shapes" / "shapes_summary.csv")
@@ -616,7 +664,7 @@ def card_speed(out_dir, timing, run):
 def dashboard_cards(out_dir, timing, run):
     cards, errors = [], []
     for make in (card_table1, card_fig5, card_fig6, card_fig8, card_crosscheck, card_orders, card_dynamics,
-                 card_dynamic_crosscheck, card_measured_tca):
+                 card_dynamic_crosscheck, card_measured_tca, card_contact):
         try:
             c = make(out_dir)
         except (KeyError, ValueError, TypeError, ZeroDivisionError, statistics.StatisticsError) as e:

@@ -37,6 +37,7 @@ programs=(
   "validate_dynamics|plot_dynamics.py|"
   "validate_dynamic_crosscheck|plot_dynamic_crosscheck.py|"
   "validate_measured_tca|plot_measured_tca.py|"
+  "validate_contact|plot_contact.py|"
 )
 echo "[validate] 3/5 validation programs -> $out"
 failed=()

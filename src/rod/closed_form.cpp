@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "common/error.hpp"
 
@@ -159,6 +161,93 @@ bool solve_guess_tensions(const RodModel& model, const std::vector<int>& tca_act
     cT[i] = model.actuators[i].count * T[k];
   }
   return ok && T.allFinite();
+}
+
+namespace {
+
+/// Throws DomainError naming the closed form and the quantity unless `ok`.
+void require_domain(bool ok, const char* form, const char* what, double value) {
+  if (!ok) {
+    throw DomainError(std::string(form) + ": " + what + " = " + format_value(value) +
+                      " is outside the closed form's domain");
+  }
+}
+
+}  // namespace
+
+HeavyRodOnFloor heavy_rod_on_floor(double B, double q, double H, bool pinned) {
+  const char* form = "heavy_rod_on_floor";
+  require_domain(B > 0.0 && std::isfinite(B), form, "B", B);
+  require_domain(q > 0.0 && std::isfinite(q), form, "q", q);
+  require_domain(H > 0.0 && std::isfinite(H), form, "H", H);
+  HeavyRodOnFloor r;
+  if (pinned) {
+    r.free_span_m = std::pow(24.0 * B * H / q, 0.25);
+    r.touchdown_force_N = 0.5 * q * r.free_span_m;
+    r.base_force_N = 0.5 * q * r.free_span_m;
+    r.base_moment_Nm = 0.0;
+    r.max_slope = 2.0 * H / r.free_span_m;
+  } else {
+    r.free_span_m = std::pow(72.0 * B * H / q, 0.25);
+    r.touchdown_force_N = q * r.free_span_m / 3.0;
+    r.base_force_N = 2.0 * q * r.free_span_m / 3.0;
+    r.base_moment_Nm = q * r.free_span_m * r.free_span_m / 6.0;
+    r.max_slope = 16.0 * H / (9.0 * r.free_span_m);
+  }
+  return r;
+}
+
+double heavy_rod_on_floor_height_m(double B, double q, double H, double x, bool pinned) {
+  const double l = heavy_rod_on_floor(B, q, H, pinned).free_span_m;
+  if (x >= l) return 0.0;
+  const double xi = l - std::max(x, 0.0);
+  const double a = q * l / ((pinned ? 12.0 : 18.0) * B);
+  return a * xi * xi * xi - q * xi * xi * xi * xi / (24.0 * B);
+}
+
+CantileverOnCylinder cantilever_on_cylinder(double B, double L, double R, double F) {
+  const char* form = "cantilever_on_cylinder";
+  require_domain(B > 0.0 && std::isfinite(B), form, "B", B);
+  require_domain(L > 0.0 && std::isfinite(L), form, "L", L);
+  require_domain(R > 0.0 && std::isfinite(R), form, "R", R);
+  require_domain(F >= 0.0 && std::isfinite(F), form, "F", F);
+  CantileverOnCylinder c;
+  c.onset_force_N = B / (R * L);
+  c.touching = F > c.onset_force_N;
+  if (!c.touching) {
+    c.tip_deflection_m = F * L * L * L / (3.0 * B);
+    c.clamp_moment_Nm = F * L;
+    return c;
+  }
+  const double free = B / (F * R);
+  c.lift_off_m = L - free;
+  c.contact_force_N = F;
+  c.tip_deflection_m = L * L / (2.0 * R) - B * B / (6.0 * F * F * R * R * R);
+  c.clamp_moment_Nm = B / R;
+  return c;
+}
+
+double propped_cantilever_reaction_N(double P, double L, double a) {
+  const char* form = "propped_cantilever_reaction_N";
+  require_domain(L > 0.0 && std::isfinite(L), form, "L", L);
+  require_domain(a > 0.0 && a <= L, form, "a", a);
+  require_domain(std::isfinite(P), form, "P", P);
+  return P * (3.0 * L - a) / (2.0 * a);
+}
+
+std::optional<WrapOnCylinder> rod_wrapped_on_cylinder(double B, double T, double rho) {
+  const char* form = "rod_wrapped_on_cylinder";
+  require_domain(B > 0.0 && std::isfinite(B), form, "B", B);
+  require_domain(T >= 0.0 && std::isfinite(T), form, "T", T);
+  require_domain(rho > 0.0 && std::isfinite(rho), form, "rho", rho);
+  if (T < B / (4.0 * rho * rho)) return std::nullopt;
+  WrapOnCylinder w;
+  const double c = 1.0 - B / (2.0 * T * rho * rho);
+  w.lift_off_angle_rad = std::acos(std::clamp(c, -1.0, 1.0));
+  w.point_force_N = T * std::sin(w.lift_off_angle_rad);
+  w.axial_force_N = T - B / (2.0 * rho * rho);
+  w.pressure_N_m = w.axial_force_N / rho;
+  return w;
 }
 
 }  // namespace tcasim::rod

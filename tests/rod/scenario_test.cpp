@@ -693,14 +693,14 @@ namespace tcasim::rod {
 namespace {
 
 // The project's own files must satisfy the reader (scenario files under
-// validation/scenarios/ and its dynamic suite validation/scenarios/dynamic/, materials under
-// data/materials/).
+// validation/scenarios/, its dynamic suite validation/scenarios/dynamic/ and its contact suite
+// validation/scenarios/contact/, materials under data/materials/).
 TEST(ShippedFiles, ValidationScenariosAndMaterialsParse) {
   const std::filesystem::path dir =
       std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios";
   int parsed = 0;
   std::vector<std::filesystem::path> files;
-  for (const auto& d : {dir, dir / "dynamic"}) {
+  for (const auto& d : {dir, dir / "dynamic", dir / "contact"}) {
     for (const auto& entry : std::filesystem::directory_iterator(d)) files.push_back(entry.path());
   }
   for (const auto& file : files) {
