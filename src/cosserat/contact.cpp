@@ -268,10 +268,16 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     for (int j = 0; j < nx; ++j) {
       xt = x;
       xt[j] = x[j] + kForwardStep * std::max(std::abs(x[j]), typ[j]);
-      const double h = xt[j] - x[j];
+      double h = xt[j] - x[j];
+      // A forward step can leave the model's domain where the iterate lies on its edge (a
+      // TCA law at its limits): the backward difference then, of the same accuracy.
       if (!contact_ivp(act, xt, lam, 0, contact_fd)) {
-        why = "the IVP failed while differencing the contact Jacobian";
-        return Summary::Status::kLineSearchFailed;
+        xt[j] = x[j] - kForwardStep * std::max(std::abs(x[j]), typ[j]);
+        h = xt[j] - x[j];
+        if (!contact_ivp(act, xt, lam, 0, contact_fd)) {
+          why = "the IVP failed while differencing the contact Jacobian (both sides)";
+          return Summary::Status::kLineSearchFailed;
+        }
       }
       stack_residual(contact_fd.r, contact_fd.gap, active, L, Ft);
       J.col(j) = (Ft - F) / h;
@@ -282,11 +288,15 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
       lam_t = lam;
       const double h0 = kForwardStep * std::max(std::abs(lam[pair]), Fc);
       lam_t[pair] = lam[pair] + h0;
-      const double h = lam_t[pair] - lam[pair];
+      double h = lam_t[pair] - lam[pair];
       const int node = pair / g.per_node() + 1;
       if (!contact_ivp(act, x, lam_t, node, contact_fd)) {
-        why = "the IVP failed while differencing the contact Jacobian";
-        return Summary::Status::kLineSearchFailed;
+        lam_t[pair] = lam[pair] - h0;
+        h = lam_t[pair] - lam[pair];
+        if (!contact_ivp(act, x, lam_t, node, contact_fd)) {
+          why = "the IVP failed while differencing the contact Jacobian (both sides)";
+          return Summary::Status::kLineSearchFailed;
+        }
       }
       stack_residual(contact_fd.r, contact_fd.gap, active, L, Ft);
       J.col(nx + a) = (Ft - F) / h;
