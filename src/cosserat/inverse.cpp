@@ -159,6 +159,11 @@ double blocked_normal_force_N(ShootingSolver& constrained_solver, const rod::Rod
 
 GraspResult solve_grasp(const rod::RodModel& model, const Options& shooting_options,
                         const GraspOptions& options) {
+  if (!model.obstacles.empty()) {
+    throw DomainError(
+        "grasp: obstacles are not supported by the grasp solve yet (its finger presses the "
+        "tip_constraint; remove the scenario's obstacles)");
+  }
   require(model.tip_constraint.has_value() && model.tip_constraint->normal_W.has_value(),
           "tip_constraint.normal", "(missing)",
           "grasp needs the scenario's tip_constraint with a \"normal\" (the contact direction, "
