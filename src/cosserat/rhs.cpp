@@ -313,6 +313,29 @@ void section_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece
   }
 }
 
+/// Newton on the strains (e, om) at s until the section wrench (rod and strings, side `side`,
+/// piece `piece`) equals `target`, from the start in e and om: converged when the wrench
+/// matches to 1e-15 of `scale` or the step is below 1e-15 of the strains (length L). False
+/// when a step is not finite or 30 steps do not converge.
+bool solve_strains_for_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece,
+                              const RodRhs::Local& loc, const Vec6& target, double scale, Vec3& e,
+                              Vec3& om, SectionWrench& w) {
+  for (int it = 0; it < 30; ++it) {
+    section_wrench(p, s, side, piece, loc, e, om, w);
+    const Vec6 F = w.W - target;
+    const Vec6 dz = w.M.partialPivLu().solve(F);
+    if (!dz.allFinite()) return false;
+    e -= dz.head<3>();
+    om -= dz.tail<3>();
+    if (F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
+        dz.cwiseAbs().maxCoeff() <=
+            1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * p.L + 1e-300)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) const {
@@ -337,20 +360,10 @@ bool RodRhs::strain_jump(std::size_t knot, Eigen::VectorXd& Y, int directions) c
     }
     e = rod_part.head<3>().cwiseQuotient(right.Kn);
     om = right.ws + rod_part.tail<3>().cwiseQuotient(right.Kw);
-    const double scale = wl.W.cwiseAbs().maxCoeff();
-    bool converged = false;
-    for (int it = 0; it < 30 && !converged; ++it) {
-      section_wrench(*this, s, rod::Side::kRight, knot, right, e, om, wr);
-      const Vec6 F = wr.W - wl.W;
-      const Vec6 dz = wr.M.partialPivLu().solve(F);
-      if (!dz.allFinite()) return false;
-      e -= dz.head<3>();
-      om -= dz.tail<3>();
-      converged = F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
-                  dz.cwiseAbs().maxCoeff() <=
-                      1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * L + 1e-300);
+    if (!solve_strains_for_wrench(*this, s, rod::Side::kRight, knot, right, wl.W,
+                                  wl.W.cwiseAbs().maxCoeff(), e, om, wr)) {
+      return false;
     }
-    if (!converged) return false;
   }
   Y.segment<3>(kNu) = e;
   Y.segment<3>(kOmega) = om;
@@ -395,19 +408,7 @@ bool RodRhs::point_wrench_jump(double s, const Vec3& f_B, const Vec3& m_B,
   const double scale = std::max(w.W.cwiseAbs().maxCoeff(), target.cwiseAbs().maxCoeff());
   e -= f_B.cwiseQuotient(Kn);
   om -= m_B.cwiseQuotient(Kw);
-  bool converged = false;
-  for (int it = 0; it < 30 && !converged; ++it) {
-    section_wrench(*this, s, side, piece, loc, e, om, w);
-    const Vec6 F = w.W - target;
-    const Vec6 dz = w.M.partialPivLu().solve(F);
-    if (!dz.allFinite()) return false;
-    e -= dz.head<3>();
-    om -= dz.tail<3>();
-    converged = F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
-                dz.cwiseAbs().maxCoeff() <=
-                    1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * L + 1e-300);
-  }
-  if (!converged) return false;
+  if (!solve_strains_for_wrench(*this, s, side, piece, loc, target, scale, e, om, w)) return false;
   y.segment<3>(kNu) = e;
   y.segment<3>(kOmega) = om;
   return y.head(dim).allFinite();

@@ -41,16 +41,6 @@ rod::RodModel horizontal_rod(double diameter_m, double z0_m) {
   return m;
 }
 
-/// The frictionless floor z = 0.
-rod::Obstacle floor_plane() {
-  rod::Obstacle o;
-  o.name = "floor";
-  o.type = rod::Obstacle::Type::kPlane;
-  o.point_W_m = Vector3d::Zero();
-  o.direction_W = Vector3d::UnitZ();
-  return o;
-}
-
 /// Global balance of a solve (docs/conventions.md "Contact in the FE"): clamp reaction +
 /// weight + tip force (with the tip mass's weight) + contact forces = 0, and the same for
 /// moments about the base point, tip moment included. The nodal weights are the consistent
@@ -144,7 +134,7 @@ FloorErrors heavy_rod_errors(double H, int elements) {
   const double d = 2e-3;
   rod::RodModel m = horizontal_rod(d, H + 0.5 * d);
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   const Options opt = options(elements);
   const Solver solver(m, opt);
   State st;
@@ -290,7 +280,7 @@ TEST(BeamFeContact, WarmStartedSweepAcrossContactOnsetIsContinuous) {
   // the linear law ~slope^2 ~ 6e-5 of P.
   const double d = 10e-3, H = 5e-3;
   rod::RodModel m = horizontal_rod(d, H + 0.5 * d);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   const double B = m.bending_torsion_stiffness()[0];
   const double S = m.shear_extension_stiffness()[1];
   const double L = m.length_m;
@@ -345,7 +335,7 @@ TEST(BeamFeContact, SquareSectionRolledOnItsEdgeTouchesThePlaneWithItsCorner) {
   rod::RodModel m = testing::square_rod(1.0, side, kSteelE_Pa, kSteelPoisson, kSteelDensity);
   m.R_WB0 = horizontal_rod(side, 0.0).R_WB0 * so3::exp(Vector3d(0.0, 0.0, roll));
   m.base_position_W_m = Vector3d(0.0, 0.0, H + depth);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   const double B = m.bending_torsion_stiffness()[0];  // square: the same about every axis
   const double S = m.shear_extension_stiffness()[0];
   const double L = m.length_m;
@@ -397,7 +387,7 @@ TEST(BeamFeContact, HeavySquareRodLyingOnAFaceIsHeldByItsTwoLowerCorners) {
   m.R_WB0 = horizontal_rod(side, 0.0).R_WB0;
   m.base_position_W_m = Vector3d(0.0, 0.0, H + 0.5 * side);
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   const Options opt = options(64);
   const ContactRun run = solve_model(m, opt);
   ASSERT_TRUE(run.summary.converged()) << run.summary.message;
@@ -451,7 +441,7 @@ TEST(BeamFeContact, ContactTangentMatchesFiniteDifferencesForActiveAndOpenPairs)
   ball.type = rod::Obstacle::Type::kSphere;
   ball.radius_m = 0.05;
   ball.point_W_m = Vector3d(0.5, 0.01, 0.08);
-  m.obstacles = {floor_plane(), ball};
+  m.obstacles = {testing::plane_obstacle(), ball};
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
   Options opt;
   opt.elements = 3;
@@ -506,7 +496,7 @@ TEST(BeamFeContact, ContactTangentMatchesFiniteDifferencesForActiveAndOpenPairs)
 TEST(BeamFeContact, WarmStartKeepsTheMultipliersAndIsOneNewtonSolve) {
   rod::RodModel m = horizontal_rod(2e-3, 1e-3 + 1e-3);
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   const Solver solver(m, options(32));
   State st;
   const rod::Loads loads = rod::Loads::from_model(m);
@@ -528,7 +518,7 @@ TEST(BeamFeContact, AContactSetThatDoesNotSettleIsReportedWithTheLastIterate) {
   // contact_not_settled and the last iterate of the failed step (touching the floor).
   rod::RodModel m = horizontal_rod(2e-3, 1e-3 + 1e-3);
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   Options opt = options(16);
   opt.max_contact_changes = 0;
   const Solver solver(m, opt);
@@ -551,7 +541,7 @@ TEST(BeamFeContact, AContactSetThatDoesNotSettleIsReportedWithTheLastIterate) {
 
 TEST(BeamFeContact, DynamicsRejectsObstacles) {
   rod::RodModel m = horizontal_rod(2e-3, 0.01);
-  m.obstacles = {floor_plane()};
+  m.obstacles = {testing::plane_obstacle()};
   DynamicsOptions o;
   EXPECT_THROW(BeamDynamics(m, o), DomainError);
 }
@@ -576,7 +566,7 @@ TEST(BeamFeContact, CostOfAContactSolveAgainstTheSameSolveWithoutTheObstacle) {
     rod::RodModel m = horizontal_rod(d, H + 0.5 * d);
     const double B = m.bending_torsion_stiffness()[0];
     m.tip_force_W_N = Vector3d(0.0, 0.0, -2.0 * 3.0 * B * H);  // twice the onset load
-    m.obstacles = {floor_plane()};
+    m.obstacles = {testing::plane_obstacle()};
     rod::RodModel free = m;
     free.obstacles.clear();
     Summary with, without;
@@ -593,7 +583,7 @@ TEST(BeamFeContact, CostOfAContactSolveAgainstTheSameSolveWithoutTheObstacle) {
   for (const int elements : {32, 128}) {
     rod::RodModel m = horizontal_rod(2e-3, 1e-3 + 1e-3);
     m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-    m.obstacles = {floor_plane()};
+    m.obstacles = {testing::plane_obstacle()};
     rod::RodModel free = m;
     free.obstacles.clear();
     Summary with, without;

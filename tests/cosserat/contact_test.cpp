@@ -40,15 +40,6 @@ double weight_per_length(const rod::RodModel& m) {
   return m.material.density_profile.value(0.0) * kPi * 1e-6 * kG;
 }
 
-rod::Obstacle floor_plane() {
-  rod::Obstacle o;
-  o.name = "floor";
-  o.type = rod::Obstacle::Type::kPlane;
-  o.point_W_m = Vector3d::Zero();
-  o.direction_W = Vector3d::UnitZ();
-  return o;
-}
-
 Options grid_options(int steps) {
   Options o;
   o.integrator.steps = steps;
@@ -116,7 +107,7 @@ FloorRun floor_run(double H, int steps) {
   const double r = 0.001;
   rod::RodModel m = horizontal_steel_rod(Vector3d(0.0, 0.0, H + r));
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles.push_back(floor_plane());
+  m.obstacles.push_back(testing::plane_obstacle());
   ShootingSolver solver(m, grid_options(steps));
   const rod::Loads act = rod::Loads::from_model(m);
   Solution sol;
@@ -346,7 +337,7 @@ TEST(ContactCylinder, FingerBendsOverPeg) {
 TEST(ContactStatus, NotSettledKeepsLastIterate) {
   rod::RodModel m = horizontal_steel_rod(Vector3d(0.0, 0.0, 0.002));
   m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
-  m.obstacles.push_back(floor_plane());
+  m.obstacles.push_back(testing::plane_obstacle());
   Options o = grid_options(64);
   o.max_iterations = 2;
   ShootingSolver solver(m, o);

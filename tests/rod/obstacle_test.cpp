@@ -12,6 +12,7 @@
 #include "rod/model.hpp"
 #include "rod/scenario.hpp"
 #include "support/input_error.hpp"
+#include "support/rod_models.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -20,12 +21,7 @@ using nlohmann::json;
 using test_support::expect_input_error;
 
 Obstacle plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
-  Obstacle o;
-  o.name = "floor";
-  o.type = Obstacle::Type::kPlane;
-  o.point_W_m = point;
-  o.direction_W = normal.normalized();
-  return o;
+  return test_support::plane_obstacle("floor", point, normal);
 }
 
 Obstacle sphere(const Eigen::Vector3d& centre, double r) {

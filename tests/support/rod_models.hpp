@@ -117,6 +117,19 @@ inline void add_tca_string(rod::RodModel& m, const std::string& name,
   m.actuators.push_back(a);
 }
 
+/// A frictionless plane obstacle named `name` through `point` with unit normal `normal` (the
+/// free side), by default the floor z = 0.
+inline rod::Obstacle plane_obstacle(const std::string& name = "floor",
+                                    const Eigen::Vector3d& point = Eigen::Vector3d::Zero(),
+                                    const Eigen::Vector3d& normal = Eigen::Vector3d::UnitZ()) {
+  rod::Obstacle o;
+  o.name = name;
+  o.type = rod::Obstacle::Type::kPlane;
+  o.point_W_m = point;
+  o.direction_W = normal.normalized();
+  return o;
+}
+
 /// Initial bending of the circular manipulator (docs/conventions.md "Initial bending": it
 /// has one; the paper gives no value): omega* = (0, -0.5, 0) 1/m bends it toward -x, away from the
 /// TCA, so the cold TCA is slightly stretched (delta > 0, coils open).
