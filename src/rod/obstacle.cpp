@@ -42,9 +42,22 @@ Obstacle::Distance box_distance(const Obstacle& o, const Eigen::Vector3d& x) {
   return d;
 }
 
-/// The point of the segment [a, b] nearest to the obstacle by golden-section search of the
-/// (convex) signed distance; returns the parameter t in [0, 1].
+/// The point of the segment [a, b] nearest to the obstacle; returns the parameter t in [0, 1].
+/// A sphere's or cylinder's signed distance grows with the distance from its center or axis,
+/// whose square is a quadratic in t: its clamped minimum is exact. A box's is convex but only
+/// piecewise smooth: golden-section search.
 double nearest_on_segment(const Obstacle& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  if (o.type == Obstacle::Type::kSphere || o.type == Obstacle::Type::kCylinder) {
+    Eigen::Vector3d e = b - a, v = a - o.point_W_m;
+    if (o.type == Obstacle::Type::kCylinder) {  // the components across the axis
+      e -= e.dot(o.direction_W) * o.direction_W;
+      v -= v.dot(o.direction_W) * o.direction_W;
+    }
+    const double ee = e.squaredNorm();
+    // An edge along the axis keeps its distance: any point, the middle.
+    if (!(ee > 0.0)) return 0.5;
+    return std::clamp(-v.dot(e) / ee, 0.0, 1.0);
+  }
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   double lo = 0.0, hi = 1.0;
   double t1 = hi - g * (hi - lo), t2 = lo + g * (hi - lo);
