@@ -315,19 +315,27 @@ void section_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece
 
 /// Newton on the strains (e, om) at s until the section wrench (rod and strings, side `side`,
 /// piece `piece`) equals `target`, from the start in e and om: converged when the wrench
-/// matches to 1e-15 of `scale` or the step is below 1e-15 of the strains (length L). False
-/// when a step is not finite or 30 steps do not converge.
+/// matches to 1e-15 of `scale`, or every row to its round-off (1e-14 of the sum of its terms'
+/// magnitudes: where the rod's and the strings' parts nearly cancel, as at a free tip where
+/// the strings end, the wrench is small and its round-off is that of the parts), or the step
+/// is below 1e-15 of the strains (length L). False when a step is not finite or 30 steps do
+/// not converge.
 bool solve_strains_for_wrench(const RodRhs& p, double s, rod::Side side, std::size_t piece,
                               const RodRhs::Local& loc, const Vec6& target, double scale, Vec3& e,
                               Vec3& om, SectionWrench& w) {
   for (int it = 0; it < 30; ++it) {
     section_wrench(p, s, side, piece, loc, e, om, w);
     const Vec6 F = w.W - target;
+    Vec6 magnitude;
+    magnitude << loc.Kn.cwiseProduct(e).cwiseAbs(), loc.Kw.cwiseProduct(om - loc.ws).cwiseAbs();
+    magnitude += target.cwiseAbs();
+    for (int i = 0; i < p.n_act; ++i) magnitude += std::abs(p.cT[i]) * w.u[i].cwiseAbs();
+    const bool at_round_off = (F.cwiseAbs().array() <= 1e-14 * magnitude.array()).all();
     const Vec6 dz = w.M.partialPivLu().solve(F);
     if (!dz.allFinite()) return false;
     e -= dz.head<3>();
     om -= dz.tail<3>();
-    if (F.cwiseAbs().maxCoeff() <= 1e-15 * scale ||
+    if (F.cwiseAbs().maxCoeff() <= 1e-15 * scale || at_round_off ||
         dz.cwiseAbs().maxCoeff() <=
             1e-15 * (e.cwiseAbs().maxCoeff() + om.cwiseAbs().maxCoeff() * p.L + 1e-300)) {
       return true;
