@@ -208,6 +208,8 @@ class Discretization {
   int contact_pairs_per_node() const {
     return static_cast<int>(model_->obstacles.size()) * contact_candidates_;
   }
+  /// Contact candidates of a section (rod::contact_candidate_count of the mesh's outlines).
+  int contact_candidates() const { return contact_candidates_; }
   /// The node of contact pair j (State::contact_lambda_N's order).
   int contact_node(int j) const { return j / contact_pairs_per_node() + 1; }
   /// k = max(EA, GA)/L [N/m]: the contact rows k g are forces, as the tip-constraint rows.
@@ -317,6 +319,16 @@ class Discretization {
   };
   ContactPair contact_pair(const State& state, int j, Eigen::Matrix<double, 6, 6>* dG = nullptr,
                            Eigen::Matrix<double, 1, 6>* dg = nullptr) const;
+  /// The pairs of node k against obstacle o, every candidate of the section at once (as
+  /// contact_pair for each; rod::section_gaps evaluates them together, so a loop over a
+  /// node's pairs costs one evaluation per difference step instead of one per candidate).
+  struct ContactBlock {
+    std::vector<ContactPair> pair;
+    std::vector<Eigen::Matrix<double, 6, 6>> dG;  ///< with derivatives only
+    std::vector<Eigen::Matrix<double, 1, 6>> dg;  ///< with derivatives only
+  };
+  void contact_block(const State& state, int k, int obstacle, bool derivatives,
+                     ContactBlock& out) const;
 
  private:
   struct Quadrature {

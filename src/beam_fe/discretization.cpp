@@ -635,13 +635,26 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
   // min(lambda, k g): k g where lambda - k g > 0 (active), lambda elsewhere, with its
   // generalized derivative as tangent; or (kOpen) lambda for every pair.
   const int first_contact = first_constraint + constraint_count();
-  Eigen::Matrix<double, 6, 6> dG;
-  Eigen::Matrix<double, 1, 6> dg;
+  ContactBlock block;
   for (int j = 0; j < contact_count(); ++j) {
     const int k = contact_node(j);
+    const int in_node = j % contact_pairs_per_node();
+    const auto c = static_cast<std::size_t>(in_node % contact_candidates_);
+    if (c == 0) {
+      // The tangent needs a block's derivatives only where a pair pushes or is held on the
+      // surface: most nodes are clear of the obstacles.
+      contact_block(state, k, in_node / contact_candidates_, false, block);
+      bool needed = false;
+      for (std::size_t i = 0; tangent && i < block.pair.size(); ++i) {
+        const double lambda_i = state.contact_lambda_N[static_cast<std::size_t>(j) + i];
+        needed = needed || lambda_i != 0.0 ||
+                 (rows == ContactRows::kComplementarity &&
+                  lambda_i - contact_stiffness_N_m_ * block.pair[i].gap_m > 0.0);
+      }
+      if (needed) contact_block(state, k, in_node / contact_candidates_, true, block);
+    }
     const double lambda_N = state.contact_lambda_N[static_cast<std::size_t>(j)];
-    const ContactPair pair =
-        contact_pair(state, j, tangent ? &dG : nullptr, tangent ? &dg : nullptr);
+    const ContactPair& pair = block.pair[c];
     const double kg = contact_stiffness_N_m_ * pair.gap_m;
     const bool active = rows == ContactRows::kComplementarity && lambda_N - kg > 0.0;
     const int node = 6 * (k - 1);
@@ -650,14 +663,14 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
     if (!tangent) continue;
     const int* cs = &contact_slots_[13 * static_cast<std::size_t>(j)];
     for (int i = 0; i < 6; ++i) {
-      if (active) values[cs[i]] += contact_stiffness_N_m_ * dg[i];
+      if (active) values[cs[i]] += contact_stiffness_N_m_ * block.dg[c][i];
       values[cs[6 + i]] -= pair.G[i];
     }
     if (!active) values[cs[12]] += 1.0;
     if (lambda_N != 0.0) {
       const int* bs = &node_block_slots_[36 * static_cast<std::size_t>(k - 1)];
       for (int a = 0; a < 6; ++a)
-        for (int b = 0; b < 6; ++b) values[bs[6 * a + b]] -= lambda_N * dG(a, b);
+        for (int b = 0; b < 6; ++b) values[bs[6 * a + b]] -= lambda_N * block.dG[c](a, b);
     }
   }
   return r;
@@ -666,36 +679,52 @@ VectorXd Discretization::residual(const State& state, const LoadCase& loads, dou
 Discretization::ContactPair Discretization::contact_pair(const State& state, int j,
                                                          Eigen::Matrix<double, 6, 6>* dG,
                                                          Eigen::Matrix<double, 1, 6>* dg) const {
-  const int node = contact_node(j);
   const int in_node = j % contact_pairs_per_node();
-  const rod::Obstacle& obs =
-      model_->obstacles[static_cast<std::size_t>(in_node / contact_candidates_)];
-  const std::size_t candidate = static_cast<std::size_t>(in_node % contact_candidates_);
+  const bool derivatives = dG != nullptr || dg != nullptr;
+  ContactBlock block;
+  contact_block(state, contact_node(j), in_node / contact_candidates_, derivatives, block);
+  const std::size_t c = static_cast<std::size_t>(in_node % contact_candidates_);
+  if (dG) *dG = block.dG[c];
+  if (dg) *dg = block.dg[c];
+  return block.pair[c];
+}
+
+void Discretization::contact_block(const State& state, int node, int obstacle, bool derivatives,
+                                   ContactBlock& out) const {
+  const rod::Obstacle& obs = model_->obstacles[static_cast<std::size_t>(obstacle)];
   const rod::ContactOutline& outline = outlines_[static_cast<std::size_t>(node)];
-  auto evaluate = [&](const Vector3d& p, const Matrix3d& R) {
-    ContactPair out;
-    out.section = rod::section_gaps(obs, outline, p, R)[candidate];
-    out.gap_m = out.section.gap_m;
-    if (std::isfinite(out.gap_m)) {
-      out.G.head<3>() = out.section.normal_W;
-      out.G.tail<3>() = R.transpose() * out.section.offset_W_m.cross(out.section.normal_W);
+  const auto n_cand = static_cast<std::size_t>(contact_candidates_);
+  std::vector<rod::SectionGap> gaps;
+  auto evaluate = [&](const Vector3d& p, const Matrix3d& R, std::vector<ContactPair>& pairs) {
+    gaps = rod::section_gaps(obs, outline, p, R);
+    pairs.assign(n_cand, ContactPair());
+    for (std::size_t c = 0; c < n_cand; ++c) {
+      ContactPair& pc = pairs[c];
+      pc.section = gaps[c];
+      pc.gap_m = pc.section.gap_m;
+      if (std::isfinite(pc.gap_m)) {
+        pc.G.head<3>() = pc.section.normal_W;
+        pc.G.tail<3>() = R.transpose() * pc.section.offset_W_m.cross(pc.section.normal_W);
+      }
     }
-    return out;
   };
   const Vector3d& p = state.p_W_m[static_cast<std::size_t>(node)];
   const Matrix3d R = state.q_WB[static_cast<std::size_t>(node)].toRotationMatrix();
-  ContactPair pair = evaluate(p, R);
-  if (dG == nullptr && dg == nullptr) return pair;
-  if (dG) dG->setZero();
-  if (dg) dg->setZero();
-  if (!std::isfinite(pair.gap_m)) return pair;
+  evaluate(p, R, out.pair);
+  out.dG.clear();
+  out.dg.clear();
+  if (!derivatives) return;
+  out.dG.assign(n_cand, Eigen::Matrix<double, 6, 6>::Zero());
+  out.dg.assign(n_cand, Eigen::Matrix<double, 1, 6>::Zero());
   // Central differences over the node's increments (dp world, dtheta material: R exp(dtheta)).
   // Steps: 1e-7 L in position and 1e-5 rad in rotation keep the truncation error (step /
   // curvature radius of the obstacle or outline)^2 and the round-off eps |p| / step both
   // near 1e-8 of the derivatives for section and obstacle sizes down to ~1e-3 L.
   const double dp = 1e-7 * model_->length_m, dth = 1e-5;
-  Eigen::Matrix<double, 6, 6> dG_fd;
-  Eigen::Matrix<double, 1, 6> dg_fd;
+  // A candidate at the edge of its existence (not finite on a side of a step): its first
+  // variation, no force tangent.
+  std::vector<char> edge(n_cand, 0);
+  std::vector<ContactPair> plus, minus;
   for (int i = 0; i < 6; ++i) {
     Vector3d p_plus = p, p_minus = p;
     Matrix3d R_plus = R, R_minus = R;
@@ -709,24 +738,33 @@ Discretization::ContactPair Discretization::contact_pair(const State& state, int
       R_plus = R * so3::exp(dth * Vector3d::Unit(i - 3));
       R_minus = R * so3::exp(-dth * Vector3d::Unit(i - 3));
     }
-    const ContactPair plus = evaluate(p_plus, R_plus), minus = evaluate(p_minus, R_minus);
-    if (!std::isfinite(plus.gap_m) || !std::isfinite(minus.gap_m)) {
-      // A candidate at the edge of its existence: its first variation, no force tangent.
-      if (dg) *dg = pair.G.transpose();
-      return pair;
+    evaluate(p_plus, R_plus, plus);
+    evaluate(p_minus, R_minus, minus);
+    for (std::size_t c = 0; c < n_cand; ++c) {
+      if (edge[c] || !std::isfinite(out.pair[c].gap_m)) continue;
+      if (!std::isfinite(plus[c].gap_m) || !std::isfinite(minus[c].gap_m)) {
+        edge[c] = 1;
+        continue;
+      }
+      out.dG[c].col(i) = (plus[c].G - minus[c].G) / (2.0 * step);
+      out.dg[c][i] = (plus[c].gap_m - minus[c].gap_m) / (2.0 * step);
     }
-    dG_fd.col(i) = (plus.G - minus.G) / (2.0 * step);
-    dg_fd[i] = (plus.gap_m - minus.gap_m) / (2.0 * step);
   }
-  if (dG) *dG = dG_fd;
-  if (dg) *dg = dg_fd;
-  return pair;
+  for (std::size_t c = 0; c < n_cand; ++c) {
+    if (!edge[c]) continue;
+    out.dG[c].setZero();
+    out.dg[c] = out.pair[c].G.transpose();
+  }
 }
 
 std::vector<char> Discretization::contact_set(const State& state) const {
   std::vector<char> set(static_cast<std::size_t>(contact_count()), 0);
+  ContactBlock block;
   for (int j = 0; j < contact_count(); ++j) {
-    const double kg = contact_stiffness_N_m_ * contact_pair(state, j).gap_m;
+    const int in_node = j % contact_pairs_per_node();
+    const auto c = static_cast<std::size_t>(in_node % contact_candidates_);
+    if (c == 0) contact_block(state, contact_node(j), in_node / contact_candidates_, false, block);
+    const double kg = contact_stiffness_N_m_ * block.pair[c].gap_m;
     set[static_cast<std::size_t>(j)] =
         state.contact_lambda_N[static_cast<std::size_t>(j)] - kg > 0.0;
   }
@@ -736,10 +774,12 @@ std::vector<char> Discretization::contact_set(const State& state) const {
 std::vector<rod::ContactSample> Discretization::contact_samples(const State& state,
                                                                 int obstacle) const {
   std::vector<rod::ContactSample> samples;
+  ContactBlock block;
   for (int k = 1; k < node_count(); ++k) {
+    contact_block(state, k, obstacle, false, block);
     for (int c = 0; c < contact_candidates_; ++c) {
       const int j = (k - 1) * contact_pairs_per_node() + obstacle * contact_candidates_ + c;
-      const ContactPair pair = contact_pair(state, j);
+      const ContactPair& pair = block.pair[static_cast<std::size_t>(c)];
       // A state without (these) multipliers: every pair open.
       const double lambda_N = static_cast<int>(state.contact_lambda_N.size()) == contact_count()
                                   ? state.contact_lambda_N[static_cast<std::size_t>(j)]

@@ -319,9 +319,15 @@ bool contact_step(const Discretization& disc, const Options& options, const Stat
   }
   VectorXd b(m);
   std::vector<Eigen::Matrix<double, 1, 6>> D(static_cast<std::size_t>(m));
+  Discretization::ContactBlock block;
+  const int per_node = disc.contact_pairs_per_node(), n_cand = disc.contact_candidates();
   for (int j = 0; j < m; ++j) {
     const int node = disc.contact_node(j);
-    const double g = disc.contact_pair(st, j, nullptr, &D[j]).gap_m;
+    const int in_node = j % per_node;
+    const auto c = static_cast<std::size_t>(in_node % n_cand);
+    if (c == 0) disc.contact_block(st, node, in_node / n_cand, true, block);
+    D[j] = block.dg[c];
+    const double g = block.pair[c].gap_m;
     b[j] = g + D[j].transpose().dot(dx0.segment<6>(6 * (node - 1)));
   }
   // Feasibility tolerance of a linearized gap: a tenth of the convergence test's absolute
