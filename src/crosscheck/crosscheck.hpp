@@ -105,9 +105,13 @@ struct ReferenceSettings {
 struct Reference {
   Run rk4;       ///< RK4 with `steps`: the reference
   Run rk4_half;  ///< RK4 with steps / 2
-  /// |p(steps) - p(steps/2)| / 15: estimated tip error of the reference [m].
+  /// Estimated tip error of the reference [m]: |p(steps) - p(steps/2)| / 15 (RK4's order 4);
+  /// with obstacles |p(steps) - p(steps/2)| itself (the contact points are the grid's nodes, so
+  /// the contact ends are resolved to the grid: about first order, docs/conventions.md).
   double self_error_m = 0.0;
-  std::optional<Run> cvode;         ///< second opinion (when asked for)
+  /// Second opinion (when asked for; not with obstacles: CVODE's adaptive steps have no
+  /// contact nodes).
+  std::optional<Run> cvode;
   double cvode_difference_m = 0.0;  ///< |p_cvode - p_rk4| [m]
   bool converged() const;           ///< every solve converged
 };
