@@ -46,7 +46,9 @@ struct TipDerivatives {
 /// [Pawlowski2019] Eqs. (41)-(42): J = E_q - E_u B_u^-1 B_q, C = E_W - E_u B_u^-1 B_W at
 /// the converged `solution` of `actuation`. `variables` are actuator indices (model order).
 /// The model must have no tip constraint (J and C describe a free tip). Returns false if an
-/// IVP failed or B_u is singular.
+/// IVP failed or B_u is singular. With obstacles `method` is not used: J and C are central
+/// differences of warm-started contact solves (the sensitivities do not carry the contact
+/// multipliers), du_dq is zero; false if one of them does not converge.
 bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
                      const rod::Loads& actuation, const Solution& solution,
                      const std::vector<int>& variables, TipDerivativeMethod method,

@@ -25,6 +25,67 @@ using state_layout::kDelta;
 using state_layout::kP;
 using state_layout::kR;
 
+/// tip_derivatives with obstacles: the shooting sensitivities ignore the contact forces (their
+/// multipliers are unknowns of the contact solve, not of the IVP), so J and C are central
+/// differences of whole contact solves, each warm-started from `solution` (step eps^(1/3) of
+/// the variable's scale, F_c or F_c L for the tip wrench; one-sided where a side fails). The map is piecewise smooth: where
+/// a step changes the contact set the column is the mean slope across it. du_dq is zero and
+/// B_u the solution's (empty) Jacobian: the inverse's trial solves then start from the solution
+/// itself.
+bool contact_tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
+                             const rod::Loads& actuation, const Solution& solution,
+                             const std::vector<int>& variables, TipDerivatives& out) {
+  const int nq = static_cast<int>(variables.size());
+  const double Fc = solver.characteristic_force_N();
+  const double h_rel = std::cbrt(std::numeric_limits<double>::epsilon());
+  out.ivp_count = 0;
+  out.tip_state = solution.tip_state;
+  if (out.tip_state.size() <= kDelta) return false;
+  const Mat3 R0 = rotation_of(out.tip_state);
+  // Central difference of the tip pose over loads a_plus, a_minus (2 h apart); one-sided
+  // where one side cannot be solved (a variable at the edge of its TCA law's range).
+  auto column = [&](const rod::Loads& a_plus, const rod::Loads& a_minus, double h,
+                    Eigen::Ref<Eigen::VectorXd> col) {
+    Solution sp = solution, sm = solution;
+    const Summary s_plus = solver.solve(a_plus, sp);
+    const Summary s_minus = solver.solve(a_minus, sm);
+    out.ivp_count += s_plus.ivp_count + s_minus.ivp_count;
+    if (s_plus.converged() && s_minus.converged()) {
+      col = pose_difference(sp.tip_state, sm.tip_state, R0) / (2.0 * h);
+    } else if (s_plus.converged()) {
+      col = pose_difference(sp.tip_state, out.tip_state, R0) / h;
+    } else if (s_minus.converged()) {
+      col = pose_difference(out.tip_state, sm.tip_state, R0) / h;
+    } else {
+      return false;
+    }
+    return col.allFinite();
+  };
+  out.J.resize(6, nq);
+  for (int k = 0; k < nq; ++k) {
+    const int i = variables[static_cast<std::size_t>(k)];
+    const double v = get_variable(model, actuation, i);
+    const double h = h_rel * variable_scale(model, i, v, Fc);
+    rod::Loads a_plus = actuation, a_minus = actuation;
+    set_variable(model, a_plus, i, v + h);
+    set_variable(model, a_minus, i, v - h);
+    if (!column(a_plus, a_minus, h, out.J.col(k))) return false;
+  }
+  out.C.resize(6, 6);
+  for (int c = 0; c < 6; ++c) {
+    const double h = h_rel * Fc * (c < 3 ? 1.0 : model.length_m);
+    rod::Loads a_plus = actuation, a_minus = actuation;
+    Eigen::Vector3d& f_plus = c < 3 ? a_plus.tip_force_W_N : a_plus.tip_moment_W_Nm;
+    Eigen::Vector3d& f_minus = c < 3 ? a_minus.tip_force_W_N : a_minus.tip_moment_W_Nm;
+    f_plus[c % 3] += h;
+    f_minus[c % 3] -= h;
+    if (!column(a_plus, a_minus, h, out.C.col(c))) return false;
+  }
+  out.du_dq = Eigen::MatrixXd::Zero(solution.unknowns.size(), nq);
+  out.B_u = solution.jacobian;
+  return true;
+}
+
 }  // namespace
 
 bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
@@ -43,6 +104,9 @@ bool tip_derivatives(ShootingSolver& solver, const rod::RodModel& model,
   for (int i : variables) {
     require(i >= 0 && i < static_cast<int>(model.actuators.size()), "variables", i,
             "must index a model actuator");
+  }
+  if (!model.obstacles.empty()) {
+    return contact_tip_derivatives(solver, model, actuation, solution, variables, out);
   }
   const Eigen::VectorXd& x = solution.unknowns;
   out.ivp_count = 0;

@@ -1,6 +1,5 @@
 // Target solve of the inverse problem: bounded, trust-region least squares on the actuation
 // ([Pawlowski2019] Section IV with the tip Jacobian of inverse_jacobian.cpp).
-#include <fmt/format.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -99,14 +98,6 @@ Eigen::VectorXd bounded_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& e,
 InverseResult solve_inverse(ShootingSolver& solver, const rod::RodModel& model,
                             const Eigen::Vector3d& target_W_m, const InverseOptions& options,
                             rod::Loads& actuation, Solution& solution) {
-  // The tip derivatives (shooting sensitivities) ignore contact: with obstacles the iteration
-  // stalls and would call a reachable target unreachable. Refused until they take it.
-  if (!model.obstacles.empty()) {
-    throw DomainError(fmt::format(
-        "inverse: obstacles are not supported by the inverse solve yet (the scenario has {}, "
-        "first \"{}\"); sweep the actuation with tcasim sweep instead",
-        model.obstacles.size(), model.obstacles.front().name));
-  }
   require(target_W_m.allFinite(), "target", target_W_m.norm(), "must be finite");
   require(options.tolerance_m > 0.0, "options.tolerance_m", options.tolerance_m, "must be > 0");
   require(options.max_iterations >= 1, "options.max_iterations", options.max_iterations,

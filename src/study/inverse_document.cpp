@@ -66,6 +66,16 @@ DocumentRun inverse_document(const rod::RodModel& model, const Eigen::Vector3d& 
     acts.push_back(e);
   }
   j["actuators"] = acts;
+  // With obstacles: the contact forces of the final state (the keys of a result file).
+  if (!model.obstacles.empty() && sol.valid) {
+    const cosserat::Summary s = solver.solve(act, sol);  // warm: the state itself
+    if (s.converged()) {
+      const json res = rod::to_json(solver.make_result(act, sol, s));
+      for (const char* key : {"contacts", "contact_model", "base_reaction"}) {
+        if (res.contains(key)) j[key] = res[key];
+      }
+    }
+  }
   return {std::move(j), r.converged(), cosserat::to_string(r.status), r.message};
 }
 

@@ -69,6 +69,27 @@ def test_inverse_matches_the_cli_document(run_cli, tmp_path):
     assert got["converged"] and got["actuators"][0]["coils_closed"] is False
 
 
+def test_inverse_reaches_a_target_resting_on_an_obstacle(run_cli, tmp_path):
+    # The TCA finger of the contact suite curls onto its peg above about 88 degC: the tip of
+    # the forward sweep point at 100 degC (in contact) is the target, reached from ambient.
+    scenario = SCENARIO_DIR / "contact" / "tca-finger-cylinder.json"
+    sweep = run_cli("sweep", scenario, "--actuator", "u-tca", "--temperatures-degC", "100:100:1")
+    assert sweep.returncode == 0, sweep.stderr
+    row = read_csv(sweep.stdout)
+    assert row["peg_in_contact"] == ["1"]
+    target = [float(row[f"tip_{c}_m"][0]) for c in "xyz"]
+    out = tmp_path / "inv.json"
+    cli = run_cli("inverse", scenario, "--target-m", ",".join(map(repr, target)), "--out", out)
+    assert cli.returncode == 0, cli.stderr
+    got = tcasim.inverse(scenario, target)
+    assert got == json.loads(out.read_text())
+    assert got["converged"]
+    # The tip Jacobian by differences of contact solves (about 1e-5 relative) still lands on
+    # the target; the temperature is the sweep's to the tip tolerance over dp/dT.
+    assert abs(got["actuators"][0]["temperature_degC"] - 100.0) < 1e-5
+    assert got["contacts"][0]["regions"] and got["contact_model"] == "frictionless"
+
+
 def test_grasp_matches_the_cli_document(run_cli, tmp_path):
     scenario = SCENARIO_DIR / "gripper-finger.json"
     out = tmp_path / "grasp.json"
