@@ -30,6 +30,17 @@ constexpr double kSettledResidual = 1e-5;
 /// adjacent nodes on a curved obstacle pulling and pushing, converges slowly).
 constexpr int kMaxStepsPerSet = 4;
 
+/// Half the thickness of an obstacle (half its radius, or of its smallest half extent; a
+/// plane's half-space is infinitely thick): a node that moves less than its clearance plus
+/// this cannot have passed through it.
+double half_thickness_m(const rod::Obstacle& ob) {
+  double t = std::numeric_limits<double>::infinity();  // a plane's half-space
+  if (ob.type == rod::Obstacle::Type::kCylinder || ob.type == rod::Obstacle::Type::kSphere)
+    t = ob.radius_m;
+  if (ob.type == rod::Obstacle::Type::kBox) t = ob.half_extents_m.minCoeff();
+  return 0.5 * t;
+}
+
 }  // namespace
 
 void ShootingSolver::Impl::build_contact_grid() {
@@ -160,17 +171,10 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
     why = "the IVP with contact forces failed at the start";
     return Summary::Status::kInitialPointFailed;
   }
-  // Half the thickness of each obstacle (radius, smallest half extent; a plane's half-space
-  // is infinitely thick): how deep a node may go before it must enter the active set, and how
-  // far it may move in one step (see `tunnels`).
+  // Half the thickness of each obstacle: how deep a node may go before it must enter the
+  // active set, and how far it may move in one step (see `tunnels`).
   std::vector<double> half_thickness;
-  for (const rod::Obstacle& ob : model.obstacles) {
-    double t = std::numeric_limits<double>::infinity();  // a plane's half-space
-    if (ob.type == rod::Obstacle::Type::kCylinder || ob.type == rod::Obstacle::Type::kSphere)
-      t = ob.radius_m;
-    if (ob.type == rod::Obstacle::Type::kBox) t = ob.half_extents_m.minCoeff();
-    half_thickness.push_back(0.5 * t);
-  }
+  for (const rod::Obstacle& ob : model.obstacles) half_thickness.push_back(half_thickness_m(ob));
   // The active-set update (docs/conventions.md "Contact in the shooting method"): of each
   // run of consecutive penetrating open nodes the deepest enters; with `release`, negative
   // multipliers leave (one_per_run: only the most negative of each run of consecutive
@@ -372,11 +376,72 @@ Summary::Status ShootingSolver::Impl::active_set_newton(const rod::Loads& act, E
   }
 }
 
+bool ShootingSolver::Impl::free_solve(const rod::Loads& act, Solution& sol, Summary& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!free_solver) {
+    free_model = std::make_unique<rod::RodModel>(model);
+    free_model->obstacles.clear();
+    free_solver = std::make_unique<ShootingSolver>(*free_model, free_options);
+  }
+  Solution fs = sol;  // its warm-start fields are the last free solution's (or cleared)
+  fs.contact_lambda_N.clear();
+  Summary s = free_solver->solve(act, fs);
+  if (!s.converged() || fs.unknowns.size() != nx) return false;
+  const ContactGrid& g = contact_grid;
+  const std::vector<double> open(static_cast<std::size_t>(g.pairs()), 0.0);
+  contact_fraction = 1.0;
+  if (!contact_ivp(act, fs.unknowns, open, 0, contact_iv)) return false;
+  for (const rod::SectionGap& gap : contact_iv.gap) {
+    if (gap.gap_m < -options.tolerance * L) return false;
+  }
+  // Clear is not enough: the free rod may have passed through an obstacle (a node beyond a
+  // sphere is clear again). From where the solve starts (the warm start's unknowns under
+  // these loads, as the contact iteration's first iterate; cold: the unloaded rod) no node
+  // may move farther than its clearance there plus the obstacle's half thickness.
+  const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite();
+  contact_fraction = warm ? 1.0 : 0.0;
+  const bool started = contact_ivp(act, warm ? sol.unknowns : initial_guess(act, 0.0, false), open,
+                                   0, contact_trial);
+  contact_fraction = 1.0;
+  if (!started) return false;
+  const int n_nodes = static_cast<int>(g.s.size()) - 1;
+  for (int k = 1; k <= n_nodes; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const double moved =
+        (contact_iv.y_node[ku].segment<3>(kP) - contact_trial.y_node[ku].segment<3>(kP)).norm();
+    for (int col = 0; col < g.per_node(); ++col) {
+      const double clear = std::max(
+          0.0, contact_trial.gap[static_cast<std::size_t>((k - 1) * g.per_node() + col)].gap_m);
+      if (moved >
+          clear + half_thickness_m(model.obstacles[static_cast<std::size_t>(col / g.n_cand)])) {
+        return false;
+      }
+    }
+  }
+  fs.contact_lambda_N = open;
+  sol = std::move(fs);
+  // No memo and no recorded samples belong to this solver's IVPs (make_result integrates).
+  memo_valid = false;
+  acc_samples.valid = false;
+  acc_full_load = false;
+  out = s;
+  out.ivp_count += 1;
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
 Summary ShootingSolver::Impl::contact_solve(const rod::Loads& act, Solution& sol) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n_pairs = contact_grid.pairs();
   const bool warm = sol.valid && sol.unknowns.size() == nx && sol.unknowns.allFinite() &&
                     static_cast<int>(sol.contact_lambda_N.size()) == n_pairs;
+  const bool start_open =
+      !warm || std::all_of(sol.contact_lambda_N.begin(), sol.contact_lambda_N.end(),
+                           [](double l) { return l == 0.0; });
+  {
+    Summary free;
+    if (start_open && free_solve(act, sol, free)) return free;
+  }
   Summary summary;
   std::string why;
   Eigen::VectorXd x;

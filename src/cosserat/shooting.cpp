@@ -44,6 +44,7 @@ const char* to_string(Summary::Status s) {
 ShootingSolver::Impl::Impl(const rod::RodModel& m, const Options& o,
                            std::unique_ptr<internal::Layout> layout_)
     : TipConditions(m, std::move(layout_), o.jacobian == JacobianMethod::kSensitivity),
+      free_options(o),
       options(with_jacobian_fallback(validated(m, o), nx)),
       fine_level(dim, nx, options.integrator, options.kinematics,
                  options.jacobian == JacobianMethod::kSensitivity, piece_hooks()) {

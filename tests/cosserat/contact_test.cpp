@@ -335,6 +335,41 @@ TEST(ContactCylinder, FingerBendsOverPeg) {
   EXPECT_LE(std::abs(force[2] - force[1]), dR_da * (1.0 / 128));
 }
 
+// A rod clear of its obstacles is solved by the plain solver (planar, coarse levels,
+// sensitivities): the same unknowns as without the obstacle, no contact force, a handful of
+// IVPs. A rod whose free solution passes through a sphere is not taken for clear (the
+// propped cantilever above has its free tip deflection, 0.0084 m at 1e-2 N, far beyond the
+// sphere's half thickness under it).
+TEST(ContactStart, ClearRodIsTheFreeSolution) {
+  rod::RodModel m = horizontal_steel_rod(Vector3d(0.0, 0.0, 0.5));
+  m.gravity_W_m_s2 = Vector3d(0.0, 0.0, -kG);
+  m.obstacles.push_back(testing::plane_obstacle());  // the floor z = 0, 0.5 m below
+  rod::RodModel free = m;
+  free.obstacles.clear();
+  const rod::Loads act = rod::Loads::from_model(m);
+  ShootingSolver solver(m, grid_options(64)), free_solver(free, grid_options(64));
+  Solution sol, free_sol;
+  const Summary s = solver.solve(act, sol);
+  const Summary fs = free_solver.solve(act, free_sol);
+  ASSERT_TRUE(s.converged()) << s.message;
+  ASSERT_TRUE(fs.converged()) << fs.message;
+  EXPECT_EQ(sol.unknowns, free_sol.unknowns);
+  EXPECT_LE(s.ivp_count, fs.ivp_count + 2);
+  const rod::Result res = solver.make_result(act, sol, s);
+  ASSERT_EQ(res.contacts.size(), 1u);
+  EXPECT_FALSE(res.contacts[0].in_contact());
+  for (double l : sol.contact_lambda_N) EXPECT_EQ(l, 0.0);
+  // Warm: a sweep point still clear stays on the free path.
+  rod::Loads heavier = act;
+  heavier.gravity_W_m_s2 *= 1.1;
+  const Summary s2 = solver.solve(heavier, sol);
+  const Summary fs2 = free_solver.solve(heavier, free_sol);
+  ASSERT_TRUE(s2.converged()) << s2.message;
+  ASSERT_TRUE(fs2.converged()) << fs2.message;
+  EXPECT_EQ(sol.unknowns, free_sol.unknowns);
+  EXPECT_LE(s2.ivp_count, fs2.ivp_count + 2);
+}
+
 // A contact point force at the tip node of a finger whose TCA ends there: the rod's and the
 // strings' parts of the section wrench cancel, and the strain solve behind the force's jump
 // must converge to the parts' round-off, not the (small) wrench's. The paper's gripper finger

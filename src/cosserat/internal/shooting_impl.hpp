@@ -239,6 +239,15 @@ struct ShootingSolver::Impl : internal::TipConditions {
   /// What the obstacles do in the solution (x, lam): one ContactResult per obstacle.
   std::vector<rod::ContactResult> contact_results(const std::vector<double>& lam,
                                                   const ContactIvp& iv) const;
+  /// With no contact in the start (a cold solve, or a warm one whose multipliers are all
+  /// zero): the free rod by the plain solver of the model without obstacles (planar reduction,
+  /// coarse levels, sensitivity Jacobians), which stands if no pair of the contact grid
+  /// penetrates it (gap >= -tolerance L). True with sol and out set; false (sol untouched)
+  /// when it does not converge or touches.
+  bool free_solve(const rod::Loads& act, Solution& sol, Summary& out);
+  Options free_options;                       // the options as given (coarse levels on)
+  std::unique_ptr<rod::RodModel> free_model;  // the model without its obstacles (lazily)
+  std::unique_ptr<ShootingSolver> free_solver;
   ContactGrid contact_grid;
   double contact_fraction = 1.0;  // load fraction of contact_ivp (cold-start continuation)
   std::optional<ode::Integrator> contact_step;  // one step of the fine level's method
