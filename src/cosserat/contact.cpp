@@ -29,6 +29,8 @@ constexpr double kSettledResidual = 1e-5;
 /// ... or after this many Newton steps on one set (a set whose own solution is far, e.g. two
 /// adjacent nodes on a curved obstacle pulling and pushing, converges slowly).
 constexpr int kMaxStepsPerSet = 4;
+/// Largest motion of a node in one step of the cold continuation, over L (contact_solve).
+constexpr double kMaxStepMotion = 0.25;
 
 /// Half the thickness of an obstacle (half its radius, or of its smallest half extent; a
 /// plane's half-space is infinitely thick): a node that moves less than its clearance plus
@@ -458,13 +460,25 @@ Summary ShootingSolver::Impl::contact_solve(const rod::Loads& act, Solution& sol
   if (st != Summary::Status::kConverged) {
     // Cold (or a failed warm start): continuation in the load fraction from the unloaded
     // rod (the reference shape, clear of the obstacles), the full load first; a failed step
-    // is halved, a successful one doubles the next.
+    // is halved, a successful one doubles the next. A step that moves a node farther than
+    // kMaxStepMotion L is halved too: with obstacles a rod has several equilibria (held on
+    // one side of an obstacle or slid past it; draped on a floor or curled up above it), and
+    // the one reached by ramping the loads quasi-statically is the one a user means. Large
+    // steps jump to others (a soft rod on a floor reached a looped shape standing on its tip
+    // in one step).
     std::string cold_why;
     Eigen::VectorXd xc = initial_guess(act, 0.0, false);
     std::vector<double> lc(static_cast<std::size_t>(n_pairs), 0.0);
     contact_fraction = 0.0;
     ivp_count = 0;
     st = active_set_newton(act, xc, lc, summary, cold_why);
+    std::vector<Vec3> nodes_c;  // the node positions of the last accepted step
+    auto node_positions = [&](std::vector<Vec3>& out) {
+      out.clear();
+      for (const Eigen::VectorXd& yk : contact_iv.y_node) out.push_back(yk.segment<3>(kP));
+    };
+    node_positions(nodes_c);
+    std::vector<Vec3> nodes_t;
     double done = 0.0, step = 1.0;
     while (st == Summary::Status::kConverged && done < 1.0) {
       Eigen::VectorXd xt = xc;
@@ -472,6 +486,16 @@ Summary ShootingSolver::Impl::contact_solve(const rod::Loads& act, Solution& sol
       contact_fraction = std::min(1.0, done + step);
       const Summary::Status s_step = active_set_newton(act, xt, lt, summary, cold_why);
       if (s_step == Summary::Status::kConverged) {
+        node_positions(nodes_t);
+        double moved = 0.0;
+        for (std::size_t k = 0; k < nodes_t.size() && k < nodes_c.size(); ++k)
+          moved = std::max(moved, (nodes_t[k] - nodes_c[k]).norm());
+        // (Down to 4 x the smallest step: a genuine snap of the path is taken.)
+        if (moved > kMaxStepMotion * L && step > 4.0 * options.min_continuation_step) {
+          step *= 0.5;
+          continue;
+        }
+        nodes_c.swap(nodes_t);
         done = contact_fraction;
         xc = xt;
         lc = lt;
