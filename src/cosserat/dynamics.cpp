@@ -295,17 +295,17 @@ void RodDynamics::Impl::set_intervals(int m) {
   predictor_order = 0;
 }
 
-double RodDynamics::Impl::milne_error(double dt) const {
+double RodDynamics::Impl::milne_error() const {
   // Milne's device (docs/conventions.md "Variable time steps (shooting)"): the step errs by
   // C_c y_ttt and the quadratic extrapolation through the last three solutions by C_p y_ttt,
   // so C_c / (C_c - C_p) (y(n+1) - y_pred) estimates the former.
-  const double k = dt_last[0] > 0.0 ? dt_last[0] : dt;
-  const double k2 = dt_last[1] > 0.0 ? dt_last[1] : k;
+  const double dt = est.dt[0], k = est.dt[1], k2 = est.dt[2];
+  const double* c = est.c;  // c0, c1, c2, d1 of the step
   // Truncation error of the derivative formula, tau = C_tau y_ttt (Taylor at t(n+1)); the step
   // then errs by -tau / c0.
   const double C_tau =
-      -c1 * dt * dt * dt / 6.0 - c2 * std::pow(dt + k, 3) / 6.0 + d1 * dt * dt / 2.0;
-  const double C_c = -C_tau / c0;
+      -c[1] * dt * dt * dt / 6.0 - c[2] * std::pow(dt + k, 3) / 6.0 + c[3] * dt * dt / 2.0;
+  const double C_c = -C_tau / c[0];
   const double C_p = -dt * (dt + k) * (dt + k + k2) / 6.0;
   const double factor = C_c / (C_c - C_p);
   // Lagrange weights of the extrapolation to t(n+1) from t(n), t(n) - k, t(n) - k - k2.
@@ -314,15 +314,16 @@ double RodDynamics::Impl::milne_error(double dt) const {
   const double l2 = dt * (dt + k) / ((k + k2) * k2);
   double err = 0.0;
   for (int i = 1; i <= N; ++i) {
-    const Eigen::VectorXd& yn = grid_converged[i];
-    const Eigen::Matrix<double, 12, 1>&a1 = node_hist1[i], &a2 = node_hist2[i];
-    const Vec3 p_pred = l0 * yn.segment<3>(kP) + l1 * a1.head<3>() + l2 * a2.head<3>();
-    const Vec3 e_p = factor * (grid[i].segment<3>(kP) - p_pred);
+    const Eigen::VectorXd& y_new = grid_converged[i];
+    const Eigen::Matrix<double, 12, 1>&yn = node_hist[0][i], &a1 = node_hist[1][i],
+                                    &a2 = node_hist[2][i];
+    const Vec3 p_pred = l0 * yn.head<3>() + l1 * a1.head<3>() + l2 * a2.head<3>();
+    const Vec3 e_p = factor * (y_new.segment<3>(kP) - p_pred);
     // Rotations relative to R(n), extrapolated as rotation vectors (theta(n) = 0).
-    const Mat3 Rn_T = Eigen::Map<const Mat3>(yn.data() + kR).transpose();
+    const Mat3 Rn_T = Eigen::Map<const Mat3>(yn.data() + 3).transpose();
     const Vec3 th1 = so3::log(Rn_T * Eigen::Map<const Mat3>(a1.data() + 3));
     const Vec3 th2 = so3::log(Rn_T * Eigen::Map<const Mat3>(a2.data() + 3));
-    const Vec3 th_new = so3::log(Rn_T * Eigen::Map<const Mat3>(grid[i].data() + kR));
+    const Vec3 th_new = so3::log(Rn_T * Eigen::Map<const Mat3>(y_new.data() + kR));
     const Vec3 e_th = factor * (th_new - (l1 * th1 + l2 * th2));
     err = std::max({err, e_p.norm(), L * e_th.norm()});
   }
@@ -335,6 +336,8 @@ void RodDynamics::Impl::save_snapshot() {
   snap.dt_last[0] = dt_last[0];
   snap.dt_last[1] = dt_last[1];
   snap.local_error = local_error;
+  snap.local_error_done = local_error_done;
+  snap.est = est;
   snap.temperatures_K = temperatures_K;
   snap.segments = segments;
   snap.cT = cT;
@@ -348,8 +351,7 @@ void RodDynamics::Impl::save_snapshot() {
   snap.z = z;
   snap.z_diff = z_diff;
   snap.grid_converged = grid_converged;
-  snap.node_hist1 = node_hist1;
-  snap.node_hist2 = node_hist2;
+  for (int j = 0; j < 3; ++j) snap.node_hist[j] = node_hist[j];
   snap.history_steps = history_steps;
   snap.predictor_order = predictor_order;
   snap.M = M;
@@ -530,10 +532,12 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   for (auto& r : d.cur_t) r = PointRates{};
   d.grid_converged = d.grid;
   d.dt_last[0] = d.dt_last[1] = 0.0;
+  d.est.stepped = false;
   d.local_error = 0.0;
-  d.node_hist1.resize(d.grid.size());
-  for (std::size_t i = 0; i < d.grid.size(); ++i) d.node_hist1[i] = d.grid[i].head<12>();
-  d.node_hist2 = d.node_hist1;
+  d.local_error_done = true;
+  d.node_hist[0].resize(d.grid.size());
+  for (std::size_t i = 0; i < d.grid.size(); ++i) d.node_hist[0][i] = d.grid[i].head<12>();
+  d.node_hist[1] = d.node_hist[2] = d.node_hist[0];
   d.snap.valid = false;
   d.snap.lu_pending = false;
   return sum;
@@ -636,9 +640,19 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   d.push_difference(zz);
   d.z.swap(zz);
   ++d.history_steps;
-  d.local_error = d.milne_error(d.opt.dt_s);
-  d.node_hist2.swap(d.node_hist1);
-  for (int i = 0; i <= d.N; ++i) d.node_hist1[i] = d.grid_converged[i].head<12>();
+  // The estimate's data (the rest state stands for missing history, at this step's size).
+  d.est.stepped = true;
+  d.est.dt[0] = d.opt.dt_s;
+  d.est.dt[1] = d.dt_last[0] > 0.0 ? d.dt_last[0] : d.opt.dt_s;
+  d.est.dt[2] = d.dt_last[1] > 0.0 ? d.dt_last[1] : d.est.dt[1];
+  d.est.c[0] = d.c0;
+  d.est.c[1] = d.c1;
+  d.est.c[2] = d.c2;
+  d.est.c[3] = d.d1;
+  d.local_error_done = false;
+  d.node_hist[2].swap(d.node_hist[1]);
+  d.node_hist[1].swap(d.node_hist[0]);
+  for (int i = 0; i <= d.N; ++i) d.node_hist[0][i] = d.grid_converged[i].head<12>();
   d.grid_converged = d.grid;
   d.dt_last[1] = d.dt_last[0];
   d.dt_last[0] = d.opt.dt_s;
@@ -667,7 +681,15 @@ void RodDynamics::set_time_step(double dt_s) {
   }
 }
 
-double RodDynamics::local_error_m() const { return impl_->local_error; }
+double RodDynamics::local_error_m() const {
+  const Impl& d = *impl_;
+  if (!d.est.stepped) return 0.0;
+  if (!d.local_error_done) {
+    d.local_error = d.milne_error();
+    d.local_error_done = true;
+  }
+  return d.local_error;
+}
 
 int RodDynamics::error_order() const { return 2; }
 
@@ -681,6 +703,8 @@ void RodDynamics::undo_step() {
   d.dt_last[0] = s.dt_last[0];
   d.dt_last[1] = s.dt_last[1];
   d.local_error = s.local_error;
+  d.local_error_done = s.local_error_done;
+  d.est = s.est;
   d.temperatures_K = s.temperatures_K;
   d.segments = s.segments;
   d.cT = s.cT;
@@ -694,8 +718,7 @@ void RodDynamics::undo_step() {
   d.z = s.z;
   d.z_diff = s.z_diff;
   d.grid_converged = s.grid_converged;
-  d.node_hist1 = s.node_hist1;
-  d.node_hist2 = s.node_hist2;
+  for (int j = 0; j < 3; ++j) d.node_hist[j] = s.node_hist[j];
   d.history_steps = s.history_steps;
   d.predictor_order = s.predictor_order;
   if (s.M != d.M) {

@@ -40,7 +40,7 @@ struct DynamicsOptions {
   /// l kappa <= max_interval_growth, kappa the fastest spatial growth rate of the step's
   /// linearized problem (docs/conventions.md): each interval amplifies errors by <= e^this.
   double max_interval_growth = 5.0;
-  double dt_s = 2e-3;   ///< time step [s], > 0
+  double dt_s = 2e-3;   ///< time step [s], > 0 (RodDynamics::set_time_step changes it)
   double alpha = -0.2;  ///< BDF-alpha parameter in [-0.5, 0] (0: BDF2, -0.5: trapezoidal)
   /// Converged when the scaled residual (docs/conventions.md) satisfies ||r||_inf <= this.
   double tolerance = 1e-10;

@@ -177,14 +177,21 @@ struct RodDynamics::Impl {
   /// Sizes of the last two converged steps [s] (0: none since initialize(), the history is
   /// the state at rest).
   double dt_last[2] = {0.0, 0.0};
-  /// Milne's estimate of the last converged step (RodDynamics::local_error_m).
-  double local_error = 0.0;
-  /// Position and rotation (p_W, R_WB column-major) at the grid nodes one and two steps before
-  /// grid_converged: the history of the error estimate's predictor.
-  std::vector<Eigen::Matrix<double, 12, 1>> node_hist1, node_hist2;
-  /// After a converged step to `grid`: Milne's estimate of its local error
-  /// (local_error_m()) from grid, grid_converged, node_hist1 and node_hist2.
-  double milne_error(double dt) const;
+  /// What Milne's estimate of the last converged step needs besides grid_converged (it is
+  /// computed when local_error_m() asks: fixed-step runs do not pay for it): whether there is
+  /// such a step, its size and the two before (dt, k, k2) and its c0, c1, c2, d1.
+  struct ErrorData {
+    bool stepped = false;
+    double dt[3] = {0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
+  };
+  ErrorData est;
+  /// Position and rotation (p_W, R_WB column-major) at the grid nodes one, two and three steps
+  /// before grid_converged (at rest before the first steps): the history of the estimate.
+  std::vector<Eigen::Matrix<double, 12, 1>> node_hist[3];
+  mutable double local_error = 0.0;  // Milne's estimate, once computed
+  mutable bool local_error_done = true;
+  /// Milne's estimate of the last converged step's local error (RodDynamics::local_error_m).
+  double milne_error() const;
   /// Intervals M of the automatic rule for growth rate kappa (the fewest dividing N whose
   /// longest interval l has l kappa <= max_interval_growth; N when none does).
   int automatic_intervals(double kappa) const;
@@ -201,6 +208,8 @@ struct RodDynamics::Impl {
   struct Snapshot {
     bool valid = false;
     double t = 0.0, dt_last[2] = {0.0, 0.0}, local_error = 0.0;
+    bool local_error_done = true;
+    ErrorData est;
     std::vector<std::vector<double>> temperatures_K;
     // The loads of the last solve (the outputs read them).
     std::vector<std::vector<tca::Segment>> segments;
@@ -210,7 +219,7 @@ struct RodDynamics::Impl {
     std::vector<dynamics::PointRates> cur_t;
     Eigen::VectorXd z;
     std::vector<Eigen::VectorXd> z_diff, grid_converged;
-    std::vector<Eigen::Matrix<double, 12, 1>> node_hist1, node_hist2;
+    std::vector<Eigen::Matrix<double, 12, 1>> node_hist[3];
     int history_steps = 0, predictor_order = 0, M = 0;
     bool lu_pending = false;  // no fresh Jacobian in the step yet
     bool lu_saved = false, lu_valid = false;
