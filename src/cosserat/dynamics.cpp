@@ -47,6 +47,40 @@ double growth_rate_of(const dynamics::SectionAt& sec, double c0) {
   return kappa;
 }
 
+/// BDF-alpha coefficients z_t(n+1) = c0 z(n+1) + c1 z(n) + c2 z(n-1) + d1 z_t(n).
+struct BdfAlpha {
+  double c0, c1, c2, d1;
+};
+
+/// The coefficients of a step of size dt after one of size k.
+BdfAlpha bdf_alpha(double a, double dt, double k) {
+  BdfAlpha b;
+  if (k == dt) {
+    // [Till2019] BDF-alpha coefficients (their time-management code).
+    b.c0 = (1.5 + a) / (dt * (1.0 + a));
+    b.c1 = -2.0 / dt;
+    b.c2 = (0.5 + a) / (dt * (1.0 + a));
+    b.d1 = a / (1.0 + a);
+    return b;
+  }
+  // Variable steps (docs/conventions.md "Variable time steps (shooting)"): d1 as at constant
+  // steps, c1 and c2 from exactness for t and t^2 with z(n) at t - dt, z(n-1) at t - dt - k;
+  // c0 = -(c1 + c2) keeps c0 + c1 + c2 = 0 (a static equilibrium stays a fixed point).
+  b.d1 = a / (1.0 + a);
+  b.c1 = -(1.0 - b.d1) / dt - (1.0 + b.d1) / k;
+  b.c2 = (1.0 + b.d1) * dt / (k * (dt + k));
+  b.c0 = -(b.c1 + b.c2);
+  return b;
+}
+
+/// Local truncation error of that step from an exact history, C_c z_ttt (Taylor at t(n+1):
+/// the formula errs by tau = C_tau z_ttt, the step by -tau / c0).
+double truncation_constant(const BdfAlpha& b, double dt, double k) {
+  const double C_tau =
+      -b.c1 * dt * dt * dt / 6.0 - b.c2 * std::pow(dt + k, 3) / 6.0 + b.d1 * dt * dt / 2.0;
+  return -C_tau / b.c0;
+}
+
 }  // namespace
 
 double spatial_growth_rate(const rod::RodModel& model, const DynamicsOptions& o) {
@@ -260,22 +294,11 @@ double RodDynamics::Impl::longest_interval() const {
 }
 
 void RodDynamics::Impl::set_step_coefficients(double dt, double k) {
-  const double a = opt.alpha;
-  if (k == dt) {
-    // [Till2019] BDF-alpha coefficients (their time-management code).
-    c0 = (1.5 + a) / (dt * (1.0 + a));
-    c1 = -2.0 / dt;
-    c2 = (0.5 + a) / (dt * (1.0 + a));
-    d1 = a / (1.0 + a);
-    return;
-  }
-  // Variable steps (docs/conventions.md "Variable time steps (shooting)"): d1 as at constant
-  // steps, c1 and c2 from exactness for t and t^2 with y(n) at t - dt, y(n-1) at t - dt - k;
-  // c0 = -(c1 + c2) keeps c0 + c1 + c2 = 0 (a static equilibrium stays a fixed point).
-  d1 = a / (1.0 + a);
-  c1 = -(1.0 - d1) / dt - (1.0 + d1) / k;
-  c2 = (1.0 + d1) * dt / (k * (dt + k));
-  c0 = -(c1 + c2);
+  const BdfAlpha b = bdf_alpha(opt.alpha, dt, k);
+  c0 = b.c0;
+  c1 = b.c1;
+  c2 = b.c2;
+  d1 = b.d1;
 }
 
 void RodDynamics::Impl::set_intervals(int m) {
@@ -295,19 +318,20 @@ void RodDynamics::Impl::set_intervals(int m) {
   predictor_order = 0;
 }
 
-double RodDynamics::Impl::milne_error() const {
-  // Milne's device (docs/conventions.md "Variable time steps (shooting)"): the step errs by
-  // C_c y_ttt and the quadratic extrapolation through the last three solutions by C_p y_ttt,
-  // so C_c / (C_c - C_p) (y(n+1) - y_pred) estimates the former.
+double RodDynamics::Impl::local_error_estimate() const {
+  // docs/conventions.md "Variable time steps (shooting)": the step adds to the error of the
+  // numerical solution its truncation error C_c z_ttt plus zeta = c2 / c0 times the error
+  // trend of the history, z(n) - z(n-1) (the formula carries it on), taken as the previous
+  // step's at its steady state, C_c' z_ttt / (1 - zeta'). z_ttt is the third divided difference
+  // of the last four solutions: the miss of the quadratic extrapolation, C_p z_ttt with
+  // C_p = -dt (dt + k) (dt + k + k2) / 6 (smooth errors of the history cancel in it).
   const double dt = est.dt[0], k = est.dt[1], k2 = est.dt[2];
-  const double* c = est.c;  // c0, c1, c2, d1 of the step
-  // Truncation error of the derivative formula, tau = C_tau y_ttt (Taylor at t(n+1)); the step
-  // then errs by -tau / c0.
-  const double C_tau =
-      -c[1] * dt * dt * dt / 6.0 - c[2] * std::pow(dt + k, 3) / 6.0 + c[3] * dt * dt / 2.0;
-  const double C_c = -C_tau / c[0];
+  const BdfAlpha now = bdf_alpha(opt.alpha, dt, k), before = bdf_alpha(opt.alpha, k, k2);
+  const double zeta = now.c2 / now.c0, zeta_before = before.c2 / before.c0;
+  const double C_eff = truncation_constant(now, dt, k) +
+                       zeta * truncation_constant(before, k, k2) / (1.0 - zeta_before);
   const double C_p = -dt * (dt + k) * (dt + k + k2) / 6.0;
-  const double factor = C_c / (C_c - C_p);
+  const double factor = C_eff / -C_p;
   // Lagrange weights of the extrapolation to t(n+1) from t(n), t(n) - k, t(n) - k - k2.
   const double l0 = (dt + k) * (dt + k + k2) / (k * (k + k2));
   const double l1 = -dt * (dt + k + k2) / (k * k2);
@@ -645,10 +669,6 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   d.est.dt[0] = d.opt.dt_s;
   d.est.dt[1] = d.dt_last[0] > 0.0 ? d.dt_last[0] : d.opt.dt_s;
   d.est.dt[2] = d.dt_last[1] > 0.0 ? d.dt_last[1] : d.est.dt[1];
-  d.est.c[0] = d.c0;
-  d.est.c[1] = d.c1;
-  d.est.c[2] = d.c2;
-  d.est.c[3] = d.d1;
   d.local_error_done = false;
   d.node_hist[2].swap(d.node_hist[1]);
   d.node_hist[1].swap(d.node_hist[0]);
@@ -685,7 +705,7 @@ double RodDynamics::local_error_m() const {
   const Impl& d = *impl_;
   if (!d.est.stepped) return 0.0;
   if (!d.local_error_done) {
-    d.local_error = d.milne_error();
+    d.local_error = d.local_error_estimate();
     d.local_error_done = true;
   }
   return d.local_error;

@@ -1,7 +1,7 @@
 // Variable time steps of the rod dynamics by shooting (cosserat/dynamics.hpp: set_time_step,
 // local_error_m, undo_step; docs/conventions.md "Variable time steps (shooting)"): constant
-// steps stay bit-identical, variable steps keep second order, Milne's estimate follows the
-// one-step error, undo restores exactly, bad steps are refused.
+// steps stay bit-identical, variable steps keep second order, the local error estimate follows
+// the one-step error, undo restores exactly, bad steps are refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -129,39 +129,48 @@ TEST(RodDynamicsAdaptive, AlternatingStepsConvergeAtSecondOrder) {
   test_support::ExpectOrderInBracket(h, err, 2.0, 0.3);
 }
 
-// Milne's estimate of one step of dt against its actual error, the distance to the same step
-// taken as 8 steps of dt / 8 (undo_step, then set_time_step): they agree within a factor 2,
-// and both scale as dt^3.
+/// The estimate must lie within this factor of the one-step error (measured: 0.75 to 1.21).
+constexpr double kEstimateFactor = 1.5;
+
+// The estimate of one step against its actual error, the distance to the same step taken as 8
+// steps of an eighth from the same history (undo_step, then set_time_step): they agree within
+// kEstimateFactor and both scale as dt^3; at constant steps and for a step r dt after steps of
+// dt (r = 1.5, 0.6: the variable-step constants). Measured ratios at dt = 4, 2, 1 ms:
+// r = 1: 0.92, 1.06, 1.06; r = 1.5: 1.10, 1.21, 1.19; r = 0.6: 0.75, 0.89, 0.89.
 TEST(RodDynamicsAdaptive, ErrorEstimateFollowsTheOneStepErrorAndScalesAsDtCubed) {
   const rod::RodModel m = steel_cantilever();
   const double t0 = 0.048;  // a whole number of steps for every dt below
-  std::vector<double> dts, estimates, errors;
-  for (const double dt : {4e-3, 2e-3, 1e-3}) {
-    RodDynamics d(m, damped_options(dt));
-    ASSERT_TRUE(d.initialize(sag_loads(m, kTipWeight_kg)).converged());
-    EXPECT_EQ(d.local_error_m(), 0.0);
-    const int n = static_cast<int>(std::lround(t0 / dt));
-    auto step = [&] { return d.step(smooth_release(m, d.time_s() + d.time_step_s())); };
-    for (int k = 0; k < n; ++k) ASSERT_TRUE(step().converged());
-    ASSERT_TRUE(step().converged());
-    const std::vector<Eigen::VectorXd> big = d.grid_states();
-    const double estimate = d.local_error_m();
-    d.undo_step();
-    d.set_time_step(dt / 8.0);
-    for (int k = 0; k < 8; ++k) ASSERT_TRUE(step().converged());
-    EXPECT_NEAR(d.time_s(), t0 + dt, 1e-12);
-    const double error = grid_distance(big, d.grid_states(), m.length_m);
-    std::printf("dt %.1e s: estimate %.3e m, one-step error %.3e m, ratio %.3f\n", dt, estimate,
-                error, estimate / error);
-    EXPECT_GT(estimate, 0.5 * error);
-    EXPECT_LT(estimate, 2.0 * error);
-    dts.push_back(dt);
-    estimates.push_back(estimate);
-    errors.push_back(error);
+  for (const double r : {1.0, 1.5, 0.6}) {
+    std::vector<double> dts, estimates, errors;
+    for (const double dt : {4e-3, 2e-3, 1e-3}) {
+      RodDynamics d(m, damped_options(dt));
+      ASSERT_TRUE(d.initialize(sag_loads(m, kTipWeight_kg)).converged());
+      EXPECT_EQ(d.local_error_m(), 0.0);
+      const int n = static_cast<int>(std::lround(t0 / dt));
+      auto step = [&] { return d.step(smooth_release(m, d.time_s() + d.time_step_s())); };
+      for (int k = 0; k < n; ++k) ASSERT_TRUE(step().converged());
+      d.set_time_step(r * dt);
+      ASSERT_TRUE(step().converged());
+      const std::vector<Eigen::VectorXd> big = d.grid_states();
+      const double estimate = d.local_error_m();
+      d.undo_step();
+      d.set_time_step(r * dt / 8.0);
+      for (int k = 0; k < 8; ++k) ASSERT_TRUE(step().converged());
+      EXPECT_NEAR(d.time_s(), t0 + r * dt, 1e-12);
+      const double error = grid_distance(big, d.grid_states(), m.length_m);
+      std::printf("r %.1f dt %.1e s: estimate %.3e m, one-step error %.3e m, ratio %.3f\n", r, dt,
+                  estimate, error, estimate / error);
+      EXPECT_GT(estimate, error / kEstimateFactor);
+      EXPECT_LT(estimate, error * kEstimateFactor);
+      dts.push_back(dt);
+      estimates.push_back(estimate);
+      errors.push_back(error);
+    }
+    SCOPED_TRACE("r = " + std::to_string(r));
+    test_support::ExpectOrderInBracket(dts, estimates, 3.0, 0.4);
+    test_support::ExpectOrderInBracket(dts, errors, 3.0, 0.4);
   }
   EXPECT_EQ(RodDynamics(m, damped_options(1e-3)).error_order(), 2);
-  test_support::ExpectOrderInBracket(dts, estimates, 3.0, 0.4);
-  test_support::ExpectOrderInBracket(dts, errors, 3.0, 0.4);
 }
 
 /// The solver's observable state: grid states, time, step, estimate, tensions, temperatures.

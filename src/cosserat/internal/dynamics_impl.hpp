@@ -177,21 +177,21 @@ struct RodDynamics::Impl {
   /// Sizes of the last two converged steps [s] (0: none since initialize(), the history is
   /// the state at rest).
   double dt_last[2] = {0.0, 0.0};
-  /// What Milne's estimate of the last converged step needs besides grid_converged (it is
+  /// What the error estimate of the last converged step needs besides grid_converged (it is
   /// computed when local_error_m() asks: fixed-step runs do not pay for it): whether there is
-  /// such a step, its size and the two before (dt, k, k2) and its c0, c1, c2, d1.
+  /// such a step, its size and the two before (dt, k, k2).
   struct ErrorData {
     bool stepped = false;
-    double dt[3] = {0.0, 0.0, 0.0}, c[4] = {0.0, 0.0, 0.0, 0.0};
+    double dt[3] = {0.0, 0.0, 0.0};
   };
   ErrorData est;
   /// Position and rotation (p_W, R_WB column-major) at the grid nodes one, two and three steps
   /// before grid_converged (at rest before the first steps): the history of the estimate.
   std::vector<Eigen::Matrix<double, 12, 1>> node_hist[3];
-  mutable double local_error = 0.0;  // Milne's estimate, once computed
+  mutable double local_error = 0.0;  // the estimate, once computed
   mutable bool local_error_done = true;
-  /// Milne's estimate of the last converged step's local error (RodDynamics::local_error_m).
-  double milne_error() const;
+  /// The estimated local error of the last converged step (RodDynamics::local_error_m).
+  double local_error_estimate() const;
   /// Intervals M of the automatic rule for growth rate kappa (the fewest dividing N whose
   /// longest interval l has l kappa <= max_interval_growth; N when none does).
   int automatic_intervals(double kappa) const;
