@@ -683,6 +683,7 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
 void RodDynamics::set_time_step(double dt_s) {
   Impl& d = *impl_;
   require(std::isfinite(dt_s) && dt_s > 0.0, "dynamics.dt_s", dt_s, "must be > 0");
+  if (dt_s == d.opt.dt_s) return;  // checked already (an adaptive loop sets it every step)
   DynamicsOptions o = d.opt;
   o.dt_s = dt_s;
   // The grid along s stays; it must still resolve the step's fast spatial modes (as in the

@@ -265,6 +265,21 @@ TEST(RodDynamicsAdaptive, UndoRestoresTheStateExactly) {
   }
 }
 
+// Undo after a step that did not converge (one Newton iteration allowed) restores the state
+// before it, the loads of the last solve included.
+TEST(RodDynamicsAdaptive, UndoAfterAFailedStepRestoresTheStateBeforeIt) {
+  const rod::RodModel m = steel_cantilever();
+  DynamicsOptions o = damped_options(2e-3);
+  o.max_iterations = 1;
+  RodDynamics d(m, o);
+  ASSERT_TRUE(d.initialize(sag_loads(m, kTipWeight_kg)).converged());
+  const Observed before(d);
+  ASSERT_FALSE(d.step(sag_loads(m, 0.0)).converged());
+  EXPECT_FALSE(Observed(d) == before);  // the loads of the failed solve
+  d.undo_step();
+  EXPECT_TRUE(Observed(d) == before);
+}
+
 // A much smaller step on a fixed grid: with automatic intervals the solver takes more of them
 // (each must keep l kappa <= max_interval_growth) and continues from the same state, agreeing
 // with a solver constructed with those intervals; undo across the change restores the old ones.
