@@ -173,6 +173,41 @@ TEST(RodDynamicsAdaptive, ErrorEstimateFollowsTheOneStepErrorAndScalesAsDtCubed)
   EXPECT_EQ(RodDynamics(m, damped_options(1e-3)).error_order(), 2);
 }
 
+// The three calls drive an error-controlled loop (the elementary controller: the next step
+// 0.9 (tol / e)^(1 / (p + 1)) times the last, growth within [0.5, 1.5]; a step with e > tol is
+// undone and retried smaller): it reaches T with few rejections, every accepted estimate
+// within tol, and a tip error of at most the sum of the accepted estimates' bound.
+TEST(RodDynamicsAdaptive, AnErrorControlledLoopStaysWithinItsTolerance) {
+  const rod::RodModel m = steel_cantilever();
+  const double T = 0.08, tol_m = 1e-7;
+  const Eigen::Vector3d ref = tip_after(T, 320, false);
+  RodDynamics d(m, damped_options(1e-3));
+  ASSERT_TRUE(d.initialize(sag_loads(m, kTipWeight_kg)).converged());
+  const int p = d.error_order();
+  int accepted = 0, rejected = 0;
+  double dt = 1e-3;
+  while (d.time_s() < T - 1e-12 && accepted + rejected < 1000) {
+    const double t = d.time_s();
+    d.set_time_step(std::min(dt, T - t));
+    ASSERT_TRUE(d.step(smooth_release(m, t + d.time_step_s())).converged());
+    const double e = d.local_error_m();
+    const double factor = std::clamp(0.9 * std::pow(tol_m / e, 1.0 / (p + 1)), 0.5, 1.5);
+    if (e > tol_m) {
+      d.undo_step();
+      ++rejected;
+    } else {
+      ++accepted;
+    }
+    dt = factor * d.time_step_s();
+  }
+  const double error = (d.tip_position_W_m() - ref).norm();
+  std::printf("error-controlled loop: %d accepted, %d rejected steps, tip error %.3e m\n", accepted,
+              rejected, error);
+  EXPECT_NEAR(d.time_s(), T, 1e-12);
+  EXPECT_LT(rejected, accepted / 5);
+  EXPECT_LT(error, accepted * tol_m);
+}
+
 /// The solver's observable state: grid states, time, step, estimate, tensions, temperatures.
 struct Observed {
   std::vector<Eigen::VectorXd> grid;
@@ -292,6 +327,7 @@ TEST(RodDynamicsAdaptive, AMuchSmallerStepTakesMoreIntervals) {
   for (int k = 0; k < 5; ++k) ASSERT_TRUE(d.step(released).converged());
   d.set_time_step(2.5e-4);
   const int m_fine = d.intervals();
+  std::printf("intervals at dt = 4 ms: %d, at 0.25 ms: %d\n", m_coarse, m_fine);
   EXPECT_GT(m_fine, m_coarse);
   ASSERT_TRUE(d.step(released).converged());
   // Undo across the change of intervals, and the step again.
