@@ -2,7 +2,8 @@
 /// Internal state of cosserat::RodDynamics shared by its source files (not installed, not part
 /// of the public API): the state layout, the stage-point data of the BDF-alpha history, and
 /// the solver's workspace. The files, one concept each:
-///   dynamics.cpp          options, setup, loads, scales, initialize() and step() in time;
+///   dynamics.cpp          options, setup, loads, scales, initialize() and step() in time,
+///                         variable steps, the local error estimate and undo_step();
 ///   dynamics_rhs.cpp      the time-discretized rod equations at one point and their Jacobian;
 ///   dynamics_shooting.cpp RK4 over the grid, the multiple-shooting residual and Jacobian;
 ///   dynamics_newton.cpp   the Newton (chord) iterations of one solve;
