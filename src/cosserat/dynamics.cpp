@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/so3.hpp"
 #include "cosserat/internal/dynamics_impl.hpp"
 #include "cosserat/shooting.hpp"
 #include "rod/probes.hpp"
@@ -44,6 +45,40 @@ double growth_rate_of(const dynamics::SectionAt& sec, double c0) {
   kappa = std::max(kappa, std::sqrt(sec.rho_A / sec.K_se.minCoeff()) * c0);
   kappa = std::max(kappa, std::sqrt(sec.rho_J.z() / sec.K_bt.z()) * c0);
   return kappa;
+}
+
+/// BDF-alpha coefficients z_t(n+1) = c0 z(n+1) + c1 z(n) + c2 z(n-1) + d1 z_t(n).
+struct BdfAlpha {
+  double c0, c1, c2, d1;
+};
+
+/// The coefficients of a step of size dt after one of size k.
+BdfAlpha bdf_alpha(double a, double dt, double k) {
+  BdfAlpha b;
+  if (k == dt) {
+    // [Till2019] BDF-alpha coefficients (their time-management code).
+    b.c0 = (1.5 + a) / (dt * (1.0 + a));
+    b.c1 = -2.0 / dt;
+    b.c2 = (0.5 + a) / (dt * (1.0 + a));
+    b.d1 = a / (1.0 + a);
+    return b;
+  }
+  // Variable steps (docs/conventions.md "Variable time steps (shooting)"): d1 as at constant
+  // steps, c1 and c2 from exactness for t and t^2 with z(n) at t - dt, z(n-1) at t - dt - k;
+  // c0 = -(c1 + c2) keeps c0 + c1 + c2 = 0 (a static equilibrium stays a fixed point).
+  b.d1 = a / (1.0 + a);
+  b.c1 = -(1.0 - b.d1) / dt - (1.0 + b.d1) / k;
+  b.c2 = (1.0 + b.d1) * dt / (k * (dt + k));
+  b.c0 = -(b.c1 + b.c2);
+  return b;
+}
+
+/// Local truncation error of that step from an exact history, C_c z_ttt (Taylor at t(n+1):
+/// the formula errs by tau = C_tau z_ttt, the step by -tau / c0).
+double truncation_constant(const BdfAlpha& b, double dt, double k) {
+  const double C_tau =
+      -b.c1 * dt * dt * dt / 6.0 - b.c2 * std::pow(dt + k, 3) / 6.0 + b.d1 * dt * dt / 2.0;
+  return -C_tau / b.c0;
 }
 
 }  // namespace
@@ -177,12 +212,8 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
     }
   }
   sec = dynamics::section_at(model, 0.0, o.viscosity_Pa_s);
-  const double a = o.alpha, dt = o.dt_s;
-  // [Till2019] BDF-alpha coefficients (their time-management code).
-  c0 = (1.5 + a) / (dt * (1.0 + a));
-  c1 = -2.0 / dt;
-  c2 = (0.5 + a) / (dt * (1.0 + a));
-  d1 = a / (1.0 + a);
+  const double dt = o.dt_s;
+  set_step_coefficients(dt, dt);
   const double kappa = spatial_growth_rate(model, o);
   if (h * kappa > kMaxStepGrowth) {
     throw InputError(
@@ -191,26 +222,7 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
             " must be <= " + format_value(kMaxStepGrowth) + " (at least " +
             std::to_string(static_cast<int>(std::ceil(L * kappa / kMaxStepGrowth))) + " steps)");
   }
-  if (o.intervals > 0) {
-    M = o.intervals;
-  } else {
-    M = N;
-    for (int m_try = 1; m_try <= N; ++m_try) {
-      if (N % m_try != 0) continue;
-      double longest = L / m_try;
-      if (!uniform) {
-        longest = 0.0;
-        const int s_try = N / m_try;
-        for (int k = 0; k < m_try; ++k) {
-          longest = std::max(longest, s_grid[(k + 1) * s_try] - s_grid[k * s_try]);
-        }
-      }
-      if (longest * kappa <= o.max_interval_growth) {
-        M = m_try;
-        break;
-      }
-    }
-  }
+  M = o.intervals > 0 ? o.intervals : automatic_intervals(kappa);
   S = N / M;
   if (!uniform) {
     // Stage slots 4 i + j at s_i + c_j h_i; the end stage and the tip take the left limit.
@@ -257,6 +269,118 @@ RodDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mode
       slot_dr_[slot * n_act + act] = model.actuators[act].routing.dr(s_r, side);
     }
   }
+}
+
+int RodDynamics::Impl::automatic_intervals(double kappa) const {
+  for (int m_try = 1; m_try <= N; ++m_try) {
+    if (N % m_try != 0) continue;
+    double longest = L / m_try;
+    if (!uniform) {
+      longest = 0.0;
+      const int s_try = N / m_try;
+      for (int k = 0; k < m_try; ++k) {
+        longest = std::max(longest, s_grid[(k + 1) * s_try] - s_grid[k * s_try]);
+      }
+    }
+    if (longest * kappa <= opt.max_interval_growth) return m_try;
+  }
+  return N;
+}
+
+double RodDynamics::Impl::longest_interval() const {
+  double longest = 0.0;
+  for (int k = 0; k < M; ++k) longest = std::max(longest, s_grid[(k + 1) * S] - s_grid[k * S]);
+  return longest;
+}
+
+void RodDynamics::Impl::set_step_coefficients(double dt, double k) {
+  const BdfAlpha b = bdf_alpha(opt.alpha, dt, k);
+  c0 = b.c0;
+  c1 = b.c1;
+  c2 = b.c2;
+  d1 = b.d1;
+}
+
+void RodDynamics::Impl::set_intervals(int m) {
+  M = m;
+  S = N / M;
+  dense = unknowns() <= kDenseUnknowns;
+  pattern_analyzed = false;
+  lu_valid = false;
+  // The unknowns of the converged solution in the new layout; the extrapolated start begins
+  // again from it (its differences are of the old layout).
+  z.resize(unknowns());
+  const Eigen::VectorXd& y0 = grid_converged[0];
+  z.head<6>() = y0.segment<6>(kN);
+  for (int j = 0; j < n_tca; ++j) z[6 + j] = y0[kT + j];
+  for (int k = 1; k < M; ++k) z.segment(n0() + (k - 1) * D, D) = grid_converged[k * S];
+  z_diff.assign(1, z);
+  predictor_order = 0;
+}
+
+double RodDynamics::Impl::local_error_estimate() const {
+  // docs/conventions.md "Variable time steps (shooting)": the step adds to the error of the
+  // numerical solution its truncation error C_c z_ttt plus zeta = c2 / c0 times the error
+  // trend of the history, z(n) - z(n-1) (the formula carries it on), taken as the previous
+  // step's at its steady state, C_c' z_ttt / (1 - zeta'). z_ttt is the third divided difference
+  // of the last four solutions: the miss of the quadratic extrapolation, C_p z_ttt with
+  // C_p = -dt (dt + k) (dt + k + k2) / 6 (smooth errors of the history cancel in it).
+  const double dt = est.dt[0], k = est.dt[1], k2 = est.dt[2];
+  const BdfAlpha now = bdf_alpha(opt.alpha, dt, k), before = bdf_alpha(opt.alpha, k, k2);
+  const double zeta = now.c2 / now.c0, zeta_before = before.c2 / before.c0;
+  const double C_eff = truncation_constant(now, dt, k) +
+                       zeta * truncation_constant(before, k, k2) / (1.0 - zeta_before);
+  const double C_p = -dt * (dt + k) * (dt + k + k2) / 6.0;
+  const double factor = C_eff / -C_p;
+  // Lagrange weights of the extrapolation to t(n+1) from t(n), t(n) - k, t(n) - k - k2.
+  const double l0 = (dt + k) * (dt + k + k2) / (k * (k + k2));
+  const double l1 = -dt * (dt + k + k2) / (k * k2);
+  const double l2 = dt * (dt + k) / ((k + k2) * k2);
+  double err = 0.0;
+  for (int i = 1; i <= N; ++i) {
+    const Eigen::VectorXd& y_new = grid_converged[i];
+    const Eigen::Matrix<double, 12, 1>&yn = node_hist[0][i], &a1 = node_hist[1][i],
+                                    &a2 = node_hist[2][i];
+    const Vec3 p_pred = l0 * yn.head<3>() + l1 * a1.head<3>() + l2 * a2.head<3>();
+    const Vec3 e_p = factor * (y_new.segment<3>(kP) - p_pred);
+    // Rotations relative to R(n), extrapolated as rotation vectors (theta(n) = 0).
+    const Mat3 Rn_T = Eigen::Map<const Mat3>(yn.data() + 3).transpose();
+    const Vec3 th1 = so3::log(Rn_T * Eigen::Map<const Mat3>(a1.data() + 3));
+    const Vec3 th2 = so3::log(Rn_T * Eigen::Map<const Mat3>(a2.data() + 3));
+    const Vec3 th_new = so3::log(Rn_T * Eigen::Map<const Mat3>(y_new.data() + kR));
+    const Vec3 e_th = factor * (th_new - (l1 * th1 + l2 * th2));
+    err = std::max({err, e_p.norm(), L * e_th.norm()});
+  }
+  return err;
+}
+
+void RodDynamics::Impl::save_snapshot() {
+  snap.valid = true;
+  snap.t = t;
+  snap.dt_last[0] = dt_last[0];
+  snap.dt_last[1] = dt_last[1];
+  snap.local_error = local_error;
+  snap.local_error_done = local_error_done;
+  snap.est = est;
+  snap.temperatures_K = temperatures_K;
+  snap.segments = segments;
+  snap.cT = cT;
+  snap.f_ext_W = f_ext_W;
+  snap.F_tip_W = F_tip_W;
+  snap.M_tip_W = M_tip_W;
+  snap.g_W = g_W;
+  snap.cur = cur;
+  snap.prev = prev;
+  snap.cur_t = cur_t;
+  snap.z = z;
+  snap.z_diff = z_diff;
+  snap.grid_converged = grid_converged;
+  for (int j = 0; j < 3; ++j) snap.node_hist[j] = node_hist[j];
+  snap.history_steps = history_steps;
+  snap.predictor_order = predictor_order;
+  snap.M = M;
+  snap.lu_pending = true;
+  snap.lu_saved = false;
 }
 
 void RodDynamics::Impl::set_loads(const rod::Loads& loads_in) {
@@ -431,11 +555,21 @@ DynamicsSummary RodDynamics::initialize(const rod::Loads& loads) {
   d.prev = d.trial;
   for (auto& r : d.cur_t) r = PointRates{};
   d.grid_converged = d.grid;
+  d.dt_last[0] = d.dt_last[1] = 0.0;
+  d.est.stepped = false;
+  d.local_error = 0.0;
+  d.local_error_done = true;
+  d.node_hist[0].resize(d.grid.size());
+  for (std::size_t i = 0; i < d.grid.size(); ++i) d.node_hist[0][i] = d.grid[i].head<12>();
+  d.node_hist[1] = d.node_hist[2] = d.node_hist[0];
+  d.snap.valid = false;
+  d.snap.lu_pending = false;
   return sum;
 }
 
 DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   Impl& d = *impl_;
+  d.save_snapshot();
   // Electric drives: each segment's temperature over [t, t + dt] (it does not depend on the
   // mechanics, so it is advanced first, exactly where the law is linear in T, else by the
   // trapezoidal rule; docs/conventions.md "TCAs in rod dynamics").
@@ -464,6 +598,8 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
     }
   }
   d.set_loads(loads);
+  // The previous step's size (the first step starts from rest: any size, take this one's).
+  d.set_step_coefficients(d.opt.dt_s, d.dt_last[0] > 0.0 ? d.dt_last[0] : d.opt.dt_s);
   d.c0_active = d.c0;
   d.set_scales();
   d.set_section_constants();
@@ -480,9 +616,18 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   }
   // Warm start: the unknowns extrapolated from the last steps, by the polynomial whose order
   // would have predicted the last step best (quadratic on the first steps).
-  const int order = std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
+  int order = std::min(d.history_steps, d.history_steps < 3 ? 2 : d.predictor_order);
+  order = std::min(order, static_cast<int>(d.z_diff.size()) - 1);  // fewer after set_intervals
   Eigen::VectorXd& zz = d.z_start_;
-  d.predict(order, zz);
+  const double ratio = d.dt_last[0] > 0.0 ? d.opt.dt_s / d.dt_last[0] : 1.0;
+  if (ratio != 1.0) {
+    // The differences are of equally spaced solutions: after a change of the step size, the
+    // line through the last two, z + ratio nabla z (a start only: any is correct).
+    zz = d.z_diff[0];
+    if (order >= 1) zz += ratio * d.z_diff[1];
+  } else {
+    d.predict(order, zz);
+  }
   DynamicsSummary sum = d.solve(zz);
   if (!sum.converged()) {
     if (d.history_steps > 0) {
@@ -519,9 +664,110 @@ DynamicsSummary RodDynamics::step(const rod::Loads& loads) {
   d.push_difference(zz);
   d.z.swap(zz);
   ++d.history_steps;
+  // The estimate's data (the rest state stands for missing history, at this step's size).
+  d.est.stepped = true;
+  d.est.dt[0] = d.opt.dt_s;
+  d.est.dt[1] = d.dt_last[0] > 0.0 ? d.dt_last[0] : d.opt.dt_s;
+  d.est.dt[2] = d.dt_last[1] > 0.0 ? d.dt_last[1] : d.est.dt[1];
+  d.local_error_done = false;
+  d.node_hist[2].swap(d.node_hist[1]);
+  d.node_hist[1].swap(d.node_hist[0]);
+  for (int i = 0; i <= d.N; ++i) d.node_hist[0][i] = d.grid_converged[i].head<12>();
   d.grid_converged = d.grid;
+  d.dt_last[1] = d.dt_last[0];
+  d.dt_last[0] = d.opt.dt_s;
   d.t += d.opt.dt_s;
   return sum;
+}
+
+void RodDynamics::set_time_step(double dt_s) {
+  Impl& d = *impl_;
+  require(std::isfinite(dt_s) && dt_s > 0.0, "dynamics.dt_s", dt_s, "must be > 0");
+  if (dt_s == d.opt.dt_s) return;  // checked already (an adaptive loop sets it every step)
+  DynamicsOptions o = d.opt;
+  o.dt_s = dt_s;
+  // The grid along s stays; it must still resolve the step's fast spatial modes (as in the
+  // constructor, with the constant-step c0 of dt_s).
+  const double kappa = spatial_growth_rate(d.model, o);
+  if (d.h * kappa > kMaxStepGrowth) {
+    throw InputError("dynamics.dt_s", format_value(dt_s),
+                     "is too small for the grid of " + std::to_string(d.N) +
+                         " steps along s: h kappa = " + format_value(d.h * kappa) + " must be <= " +
+                         format_value(kMaxStepGrowth) + " (construct with more steps)");
+  }
+  d.opt.dt_s = dt_s;
+  // Automatic intervals: more when the shorter step's modes grow too fast across them.
+  if (d.opt.intervals == 0 && d.longest_interval() * kappa > d.opt.max_interval_growth) {
+    d.set_intervals(d.automatic_intervals(kappa));
+  }
+}
+
+double RodDynamics::local_error_m() const {
+  const Impl& d = *impl_;
+  if (!d.est.stepped) return 0.0;
+  if (!d.local_error_done) {
+    d.local_error = d.local_error_estimate();
+    d.local_error_done = true;
+  }
+  return d.local_error;
+}
+
+int RodDynamics::error_order() const { return 2; }
+
+void RodDynamics::undo_step() {
+  Impl& d = *impl_;
+  Impl::Snapshot& s = d.snap;
+  if (!s.valid) return;
+  s.valid = false;
+  s.lu_pending = false;
+  d.t = s.t;
+  d.dt_last[0] = s.dt_last[0];
+  d.dt_last[1] = s.dt_last[1];
+  d.local_error = s.local_error;
+  d.local_error_done = s.local_error_done;
+  d.est = s.est;
+  d.temperatures_K = s.temperatures_K;
+  d.segments = s.segments;
+  d.cT = s.cT;
+  d.f_ext_W = s.f_ext_W;
+  d.F_tip_W = s.F_tip_W;
+  d.M_tip_W = s.M_tip_W;
+  d.g_W = s.g_W;
+  d.cur = s.cur;
+  d.prev = s.prev;
+  d.cur_t = s.cur_t;
+  d.z = s.z;
+  d.z_diff = s.z_diff;
+  d.grid_converged = s.grid_converged;
+  for (int j = 0; j < 3; ++j) d.node_hist[j] = s.node_hist[j];
+  d.history_steps = s.history_steps;
+  d.predictor_order = s.predictor_order;
+  if (s.M != d.M) {
+    // set_time_step() changed the intervals after the step: back to the step's layout.
+    d.M = s.M;
+    d.S = d.N / d.M;
+    d.dense = d.unknowns() <= kDenseUnknowns;
+    d.pattern_analyzed = false;
+    d.lu_valid = false;
+  } else if (s.lu_saved) {
+    // The factorization the step replaced, computed again from its matrix (the same numbers).
+    if (s.lu_valid) {
+      const double c0_active = d.c0_active;
+      d.c0_active = s.lu_c0;
+      if (d.dense) {
+        d.J_dense_ = s.J_dense;
+      } else {
+        d.J_ = s.J;
+      }
+      d.factorize_jacobian();
+      d.c0_active = c0_active;
+    }
+    d.lu_valid = s.lu_valid;
+    d.lu_c0 = s.lu_c0;
+  }
+  // The data of the last evaluation, as after the restored solve.
+  d.grid = d.grid_converged;
+  d.trial = d.cur;
 }
 
 double RodDynamics::time_s() const { return impl_->t; }

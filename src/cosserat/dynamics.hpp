@@ -40,7 +40,7 @@ struct DynamicsOptions {
   /// l kappa <= max_interval_growth, kappa the fastest spatial growth rate of the step's
   /// linearized problem (docs/conventions.md): each interval amplifies errors by <= e^this.
   double max_interval_growth = 5.0;
-  double dt_s = 2e-3;   ///< time step [s], > 0
+  double dt_s = 2e-3;   ///< time step [s], > 0 (RodDynamics::set_time_step changes it)
   double alpha = -0.2;  ///< BDF-alpha parameter in [-0.5, 0] (0: BDF2, -0.5: trapezoidal)
   /// Converged when the scaled residual (docs/conventions.md) satisfies ||r||_inf <= this.
   double tolerance = 1e-10;
@@ -92,7 +92,8 @@ struct DynamicsSummary {
 
 const char* to_string(DynamicsSummary::Status s);
 
-/// Rod dynamics of one model: static initialization at t = 0, then fixed time steps.
+/// Rod dynamics of one model: static initialization at t = 0, then time steps (of dt_s, or of
+/// the sizes set by set_time_step(); a step can be undone and retried smaller).
 /// Holds a reference to the model (it must outlive the solver). Tension drives and TCA
 /// drives (by temperature from the loads, or electric: thermal states advanced with each
 /// step; docs/conventions.md "TCAs in rod dynamics").
@@ -109,8 +110,25 @@ class RodDynamics {
   /// Advances by dt_s under `loads` (the loads at the new time t + dt).
   DynamicsSummary step(const rod::Loads& loads);
 
+  /// Sets the size of the following time steps [s] (finite, > 0; InputError naming
+  /// "dynamics.dt_s" otherwise). The integrator's history is kept: the next steps use the
+  /// variable-step coefficients (docs/conventions.md). The grid along s stays as constructed:
+  /// a step too small for it (h kappa > kMaxStepGrowth) is refused naming "dynamics.dt_s";
+  /// with automatic intervals, more intervals are chosen when the growth rule needs them.
+  void set_time_step(double dt_s);
+  /// Estimated local (one-step) error of the last converged step(): the largest, over the grid
+  /// points, of the position error estimate |e_p| [m] and L |e_theta| (rotation error estimate
+  /// times the rod length). 0 before the first step.
+  double local_error_m() const;
+  /// Order p of the method: local error ~ dt^(p+1) (the step-size controller uses it).
+  int error_order() const;
+  /// Returns to the state just before the last step() call (converged or not): states, time,
+  /// history, thermal states of electric drives, warm-start data. One level only; a no-op before
+  /// any step. Then a smaller set_time_step() and step() retries it.
+  void undo_step();
+
   double time_s() const;
-  double time_step_s() const;   ///< DynamicsOptions::dt_s
+  double time_step_s() const;   ///< the size of the next step (dt_s or set_time_step's)
   int intervals() const;        ///< M
   int state_dimension() const;  ///< 24 + actuators + TCA-driven actuators
   /// States at the grid points of the last converged solve (grid_s_m(); s_i = i L / N on a

@@ -206,39 +206,56 @@ bool RodDynamics::Impl::evaluate(const Eigen::VectorXd& zz, Eigen::VectorXd& r, 
   }
   if (!r.allFinite()) return false;
   if (jacobian) {
+    // undo_step() restores the factorization this step replaces: keep its matrix once.
+    if (snap.lu_pending) {
+      snap.lu_pending = false;
+      snap.lu_saved = true;
+      snap.lu_valid = lu_valid;
+      snap.lu_c0 = lu_c0;
+      if (lu_valid && dense) snap.J_dense = J_dense_;
+      if (lu_valid && !dense) snap.J = J_;
+    }
     if (dense) {
       J_dense_.setZero(n, n);
       for (const auto& tr : triplets_) J_dense_(tr.row(), tr.col()) += tr.value();
-      dense_lu_.compute(J_dense_);
-      // PartialPivLU does not report singularity: check the pivots.
-      const Eigen::VectorXd piv = dense_lu_.matrixLU().diagonal().cwiseAbs();
-      lu_valid = piv.allFinite() && piv.minCoeff() > 1e-14 * piv.maxCoeff();
-      lu_c0 = c0_active;
-      // The factors by rows and their bands (for dense_solve()).
-      lu_rows_ = dense_lu_.matrixLU();
-      lu_first_.resize(n);
-      lu_last_.resize(n);
-      for (int i = 0; i < n; ++i) {
-        int first = 0, last = n;
-        while (first < i && lu_rows_(i, first) == 0.0) ++first;
-        while (last > i + 1 && lu_rows_(i, last - 1) == 0.0) --last;
-        lu_first_[i] = first;
-        lu_last_[i] = last;
-      }
-      return true;
+    } else {
+      J_.resize(n, n);
+      J_.setFromTriplets(triplets_.begin(), triplets_.end());
+      J_.makeCompressed();
     }
-    J_.resize(n, n);
-    J_.setFromTriplets(triplets_.begin(), triplets_.end());
-    J_.makeCompressed();
-    if (!pattern_analyzed) {
-      lu_.analyzePattern(J_);
-      pattern_analyzed = true;
-    }
-    lu_.factorize(J_);
-    lu_valid = lu_.info() == Eigen::Success;
-    lu_c0 = c0_active;
+    factorize_jacobian();
   }
   return true;
+}
+
+void RodDynamics::Impl::factorize_jacobian() {
+  if (dense) {
+    const int n = static_cast<int>(J_dense_.rows());
+    dense_lu_.compute(J_dense_);
+    // PartialPivLU does not report singularity: check the pivots.
+    const Eigen::VectorXd piv = dense_lu_.matrixLU().diagonal().cwiseAbs();
+    lu_valid = piv.allFinite() && piv.minCoeff() > 1e-14 * piv.maxCoeff();
+    lu_c0 = c0_active;
+    // The factors by rows and their bands (for dense_solve()).
+    lu_rows_ = dense_lu_.matrixLU();
+    lu_first_.resize(n);
+    lu_last_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      int first = 0, last = n;
+      while (first < i && lu_rows_(i, first) == 0.0) ++first;
+      while (last > i + 1 && lu_rows_(i, last - 1) == 0.0) --last;
+      lu_first_[i] = first;
+      lu_last_[i] = last;
+    }
+    return;
+  }
+  if (!pattern_analyzed) {
+    lu_.analyzePattern(J_);
+    pattern_analyzed = true;
+  }
+  lu_.factorize(J_);
+  lu_valid = lu_.info() == Eigen::Success;
+  lu_c0 = c0_active;
 }
 
 void RodDynamics::Impl::dense_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {

@@ -2,7 +2,8 @@
 /// Internal state of cosserat::RodDynamics shared by its source files (not installed, not part
 /// of the public API): the state layout, the stage-point data of the BDF-alpha history, and
 /// the solver's workspace. The files, one concept each:
-///   dynamics.cpp          options, setup, loads, scales, initialize() and step() in time;
+///   dynamics.cpp          options, setup, loads, scales, initialize() and step() in time,
+///                         variable steps, the local error estimate and undo_step();
 ///   dynamics_rhs.cpp      the time-discretized rod equations at one point and their Jacobian;
 ///   dynamics_shooting.cpp RK4 over the grid, the multiple-shooting residual and Jacobian;
 ///   dynamics_newton.cpp   the Newton (chord) iterations of one solve;
@@ -171,6 +172,64 @@ struct RodDynamics::Impl {
   std::vector<double> s_grid;  // N + 1 grid points; s_grid[i] = i h on a uniform body
   // BDF-alpha: y_t(n+1) = c0 y(n+1) + c1 y(n) + c2 y(n-1) + d1 y_t(n) ([Till2019]).
   double c0 = 0.0, c1 = 0.0, c2 = 0.0, d1 = 0.0;
+  /// c0, c1, c2, d1 of a step of size dt after one of size k (docs/conventions.md "Variable
+  /// time steps (shooting)"); k == dt gives [Till2019]'s constant-step numbers bit for bit.
+  void set_step_coefficients(double dt, double k);
+  /// Sizes of the last two converged steps [s] (0: none since initialize(), the history is
+  /// the state at rest).
+  double dt_last[2] = {0.0, 0.0};
+  /// What the error estimate of the last converged step needs besides grid_converged (it is
+  /// computed when local_error_m() asks: fixed-step runs do not pay for it): whether there is
+  /// such a step, its size and the two before (dt, k, k2).
+  struct ErrorData {
+    bool stepped = false;
+    double dt[3] = {0.0, 0.0, 0.0};
+  };
+  ErrorData est;
+  /// Position and rotation (p_W, R_WB column-major) at the grid nodes one, two and three steps
+  /// before grid_converged (at rest before the first steps): the history of the estimate.
+  std::vector<Eigen::Matrix<double, 12, 1>> node_hist[3];
+  mutable double local_error = 0.0;  // the estimate, once computed
+  mutable bool local_error_done = true;
+  /// The estimated local error of the last converged step (RodDynamics::local_error_m).
+  double local_error_estimate() const;
+  /// Intervals M of the automatic rule for growth rate kappa (the fewest dividing N whose
+  /// longest interval l has l kappa <= max_interval_growth; N when none does).
+  int automatic_intervals(double kappa) const;
+  /// Length of the longest of the M shooting intervals [m].
+  double longest_interval() const;
+  /// Switches to m intervals (the unknowns of the converged grid in the new layout; the
+  /// extrapolated start restarts; a fresh Jacobian).
+  void set_intervals(int m);
+  /// Factorizes the Jacobian in J_dense_ (dense) or J_ (sparse): lu_valid, lu_c0 and the
+  /// banded factors of dense_solve().
+  void factorize_jacobian();
+  /// What undo_step() restores: the state before the last step() (the factorization only
+  /// when that step replaced it: saved at its first fresh Jacobian).
+  struct Snapshot {
+    bool valid = false;
+    double t = 0.0, dt_last[2] = {0.0, 0.0}, local_error = 0.0;
+    bool local_error_done = true;
+    ErrorData est;
+    std::vector<std::vector<double>> temperatures_K;
+    // The loads of the last solve (the outputs read them).
+    std::vector<std::vector<tca::Segment>> segments;
+    std::vector<double> cT;
+    internal::Vec3 f_ext_W, F_tip_W, M_tip_W, g_W;
+    std::vector<dynamics::PointData> cur, prev;
+    std::vector<dynamics::PointRates> cur_t;
+    Eigen::VectorXd z;
+    std::vector<Eigen::VectorXd> z_diff, grid_converged;
+    std::vector<Eigen::Matrix<double, 12, 1>> node_hist[3];
+    int history_steps = 0, predictor_order = 0, M = 0;
+    bool lu_pending = false;  // no fresh Jacobian in the step yet
+    bool lu_saved = false, lu_valid = false;
+    double lu_c0 = -1.0;
+    Eigen::MatrixXd J_dense;
+    Eigen::SparseMatrix<double> J;
+  };
+  Snapshot snap;
+  void save_snapshot();
   double c0_active = 0.0;  // 0 for the static solve
   double t = 0.0;
   // Loads of the current solve.
