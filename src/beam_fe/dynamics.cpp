@@ -218,6 +218,10 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
 
 void BeamDynamics::Impl::set_step_size(double h_new) {
   const double ratio = h_new / h;
+  // The acceleration variable lags: a_n = vdot(t_n + (alpha_m - alpha_f) h) + O(h^2)
+  // ([Chung1993]), a shift proportional to the step size. Rescaling a_n - vdot_n with the step
+  // keeps a_n consistent with the new step (no spurious a-mode excited by a size change).
+  a = vd + ratio * (a - vd);
   h = h_new;
   c_a = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * ap.beta * h);
   c_e = ap.gamma / (ap.beta * h);

@@ -300,6 +300,7 @@ rod::TrajectoryOutcome run_adaptive(
   double t = 0.0;
   double dt = std::min(o.dt_initial_s, o.dt_max_s);
   std::size_t next = 0;
+  bool after_rejection = false;  // no growth right after a rejection ([Hairer1993] II.4)
   const auto fail = [&](double t_new, std::string status, std::string message) {
     out.status = std::move(status);
     out.message =
@@ -335,7 +336,8 @@ rod::TrajectoryOutcome run_adaptive(
       continue;
     }
     const double err = solver.local_error_m() / tol_m;
-    const double factor = factor_of(err);
+    const double factor = after_rejection ? std::min(factor_of(err), 1.0) : factor_of(err);
+    after_rejection = !(err <= 1.0);
     if (!(err <= 1.0)) {
       solver.undo_step();
       ++out.steps_rejected;
