@@ -108,7 +108,8 @@ struct AdaptiveOptions {
   double rtol = 1e-4;    ///< relative tolerance of the local error, per rod length, in (0, 1)
   double atol_m = 0.0;   ///< absolute tolerance of the local error [m], >= 0
   double output_every_s = 0.0;  ///< output period [s], > 0 (and the end time)
-  double dt_initial_s = 1e-3;   ///< the first step's size [s], > 0
+  /// The first step's size [s], > 0, and the restart size after a breakpoint.
+  double dt_initial_s = 1e-6;
   double dt_min_s = 1e-12;      ///< a step size below this ends the run [s], > 0
   double dt_max_s = std::numeric_limits<double>::infinity();  ///< largest step size [s]
   /// Times in (0, duration) the steps land on: the jumps of the scenario's time profiles
@@ -127,7 +128,9 @@ std::vector<double> time_breakpoints(const rod::RodModel& model, double t_end_s)
 /// (at most dt_max_s); a step whose Newton iteration fails is undone and retried at dt / 4.
 /// Steps land exactly on the output times k output_every_s and duration_s (the step is
 /// shortened, or halved when less than two remain; the proposal is kept for the step after) and
-/// on breakpoints_s. on_output(solver, dt) at t = 0 (dt = 0) and each output time (dt the
+/// on breakpoints_s. At t = 0 and after each breakpoint the steps restart from dt_initial_s,
+/// growing at most 1.5 per step for 20 steps (the jump makes the history inconsistent).
+/// on_output(solver, dt) at t = 0 (dt = 0) and each output time (dt the
 /// step that reached it); on_step(t) after each accepted step. A step size below dt_min_s or
 /// more than max_steps steps end the run (status "dt-min" or "max-steps") as a failed step:
 /// "time step to t = T s failed (STATUS): ...". The counts of accepted, rejected and failed

@@ -64,7 +64,7 @@ struct SimulationHooks {
 /// `steps` is given.
 method::DynamicOptions dynamic_options(const rod::RodModel& model, const SimulationOptions& o);
 /// The settings of method::run_adaptive of checked adaptive options `o`: the first step
-/// min(output_every_s, duration_s / 1000), dt_min_s = 1e-12 duration_s, the jumps of the
+/// min(output_every_s, 1e-6 duration_s), dt_min_s = 1e-12 duration_s, the jumps of the
 /// scenario's time profiles as breakpoints, at most kMaxTimeSteps steps.
 method::AdaptiveOptions adaptive_options(const rod::RodModel& model, const SimulationOptions& o);
 /// Runs the simulation of `model` (checked options; InputError in `style` for what the
