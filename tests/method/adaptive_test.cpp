@@ -86,8 +86,9 @@ TEST(AdaptiveSteps, FeErrorFallsWithRtolOnTheReleasedCantilever) {
     EXPECT_GT(dts.back(), 0.0);
     errors.push_back(e);
   }
-X
-  constexpr double kMinFall = 2.5, kMaxFall = 12.0;
+  /// Per decade of rtol: 10^(2/3) = 4.6 expected; 5.3 and 2.7 seen (the last level nears the
+  /// reference's own error and the start's).
+  constexpr double kMinFall = 2.0, kMaxFall = 12.0;
   for (std::size_t i = 1; i < errors.size(); ++i) {
     EXPECT_GT(errors[i - 1] / errors[i], kMinFall) << i;
     EXPECT_LT(errors[i - 1] / errors[i], kMaxFall) << i;
