@@ -147,10 +147,10 @@ void register_simulate(py::module_& m) {
   m.def(
       "simulate",
       [](py::object scenario, const std::string& method, py::object duration_s, py::object dt_s,
-         py::object rtol, py::object atol_m, py::object output_every_s, py::object output_every, py::object max_iterations, bool release_tip_load,
-         py::object viscosity_Pa_s, py::object tip_mass_kg, py::object alpha, py::object steps,
-         py::object elements, py::object order, py::object rho_inf, py::object progress,
-         bool check) {
+         py::object rtol, py::object atol_m, py::object output_every_s, py::object output_every,
+         py::object max_iterations, bool release_tip_load, py::object viscosity_Pa_s,
+         py::object tip_mass_kg, py::object alpha, py::object steps, py::object elements,
+         py::object order, py::object rho_inf, py::object progress, bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         study::check_method(method, study::OptionNames::kPython);
         // A keyword of the other method is refused, not ignored.
@@ -222,12 +222,12 @@ void register_simulate(py::module_& m) {
       },
       py::arg("scenario"), py::arg("method") = "cosserat", py::kw_only(), py::arg("duration_s"),
       py::arg("dt_s") = py::none(), py::arg("rtol") = py::none(), py::arg("atol_m") = py::none(),
-      py::arg("output_every_s") = py::none(), py::arg("output_every") = 1, py::arg("max_iterations") = 30,
-      py::arg("release_tip_load") = false, py::arg("viscosity_Pa_s") = py::none(),
-      py::arg("tip_mass_kg") = py::none(), py::arg("alpha") = py::none(),
-      py::arg("steps") = py::none(), py::arg("elements") = py::none(),
-      py::arg("order") = py::none(), py::arg("rho_inf") = py::none(),
-      py::arg("progress") = py::none(), py::arg("check") = true,
+      py::arg("output_every_s") = py::none(), py::arg("output_every") = 1,
+      py::arg("max_iterations") = 30, py::arg("release_tip_load") = false,
+      py::arg("viscosity_Pa_s") = py::none(), py::arg("tip_mass_kg") = py::none(),
+      py::arg("alpha") = py::none(), py::arg("steps") = py::none(),
+      py::arg("elements") = py::none(), py::arg("order") = py::none(),
+      py::arg("rho_inf") = py::none(), py::arg("progress") = py::none(), py::arg("check") = true,
       fmt::format(
           R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
 (the same numbers): the scenario's time profiles, viscosity and tip mass.

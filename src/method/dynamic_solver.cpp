@@ -327,8 +327,9 @@ rod::TrajectoryOutcome run_adaptive(
     const double h = landing ? remaining : remaining < 2.0 * dt ? 0.5 * remaining : dt;
     const double t_new = landing ? target : t + h;
     if (h < o.dt_min_s && !landing) {
-      return fail(t_new, "dt-min",
-                  fmt::format("the step size {:.3e} s is below dt_min_s = {:.3e} s", h, o.dt_min_s));
+      return fail(
+          t_new, "dt-min",
+          fmt::format("the step size {:.3e} s is below dt_min_s = {:.3e} s", h, o.dt_min_s));
     }
     if (out.steps_done + out.steps_rejected + out.steps_failed >= o.max_steps) {
       return fail(t_new, "max-steps", fmt::format("{} steps taken", o.max_steps));
@@ -346,7 +347,8 @@ rod::TrajectoryOutcome run_adaptive(
       }
       continue;
     }
-    const double err = solver.local_error_m() / tol_m;
+    const double local_m = solver.local_error_m();
+    const double err = local_m / tol_m;
     double factor = after_rejection ? std::min(factor_of(err), 1.0) : factor_of(err);
     if (since_restart < kRestartSteps) factor = std::min(factor, kRestartGrowth);
     after_rejection = !(err <= 1.0);
@@ -358,7 +360,7 @@ rod::TrajectoryOutcome run_adaptive(
         return fail(t_new, "dt-min",
                     fmt::format("error estimate {:.3e} m above the tolerance {:.3e} m at step size "
                                 "{:.3e} s; the next {:.3e} s < dt_min_s = {:.3e} s",
-                                solver.local_error_m(), tol_m, h, dt, o.dt_min_s));
+                                local_m, tol_m, h, dt, o.dt_min_s));
       }
       continue;
     }

@@ -105,12 +105,12 @@ rod::TrajectoryOutcome run(DynamicSolver& solver, const rod::LoadsAt& loads_at, 
 
 /// Error-controlled time steps of run_adaptive (docs/scenario-format.md "Trajectory file").
 struct AdaptiveOptions {
-  double rtol = 1e-4;    ///< relative tolerance of the local error, per rod length, in (0, 1)
-  double atol_m = 0.0;   ///< absolute tolerance of the local error [m], >= 0
+  double rtol = 1e-4;   ///< relative tolerance of the local error, per rod length, in (0, 1)
+  double atol_m = 0.0;  ///< absolute tolerance of the local error [m], >= 0
   double output_every_s = 0.0;  ///< output period [s], > 0 (and the end time)
   /// The first step's size [s], > 0, and the restart size after a breakpoint.
   double dt_initial_s = 1e-6;
-  double dt_min_s = 1e-12;      ///< a step size below this ends the run [s], > 0
+  double dt_min_s = 1e-12;  ///< a step size below this ends the run [s], > 0
   double dt_max_s = std::numeric_limits<double>::infinity();  ///< largest step size [s]
   /// Times in (0, duration) the steps land on: the jumps of the scenario's time profiles
   /// (time_breakpoints), where the solution is not smooth.

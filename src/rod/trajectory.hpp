@@ -4,8 +4,8 @@
 /// the one time loop that drives either is method::run (method/dynamics.hpp).
 
 #include <Eigen/Core>
-#include <ostream>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,8 +65,8 @@ void write_trajectory_row(std::ostream& os, const TrajectoryRow& row);
 
 /// How a run of the time loop ended.
 struct TrajectoryOutcome {
-  bool ok = false;                   ///< the static state and every step converged
-  long long steps_done = 0;          ///< converged (accepted) time steps
+  bool ok = false;           ///< the static state and every step converged
+  long long steps_done = 0;  ///< converged (accepted) time steps
   /// Adaptive time steps: steps undone and retried smaller because their error estimate
   /// exceeded the tolerance, and because their Newton iteration failed.
   long long steps_rejected = 0;

@@ -69,7 +69,8 @@ long long check_time_options(double duration_s, double dt_s, double alpha, Optio
 /// The adaptive options' rules; returns the number of output rows after t = 0.
 long long check_adaptive_options(const SimulationOptions& o, OptionNames style) {
   const auto name = [style](const char* key) { return option_name(key, style); };
-  const std::string with = fmt::format("cannot be given with {} (adaptive time steps)", name("rtol"));
+  const std::string with =
+      fmt::format("cannot be given with {} (adaptive time steps)", name("rtol"));
   if (o.dt_s != 0.0) throw InputError(name("dt_s"), fmt::format("{}", o.dt_s), with);
   if (o.output_every != 1) {
     throw InputError(name("output_every"), fmt::format("{}", o.output_every),

@@ -17,10 +17,10 @@ namespace tcasim::study {
 
 /// The options of `tcasim simulate` (its flags; tcasim.simulate's keywords).
 struct SimulationOptions {
-  std::string method = "cosserat";       ///< "cosserat" or "fe"
-  double duration_s = 0.0;               ///< simulated time T [s], > 0
-  double dt_s = 0.0;                     ///< fixed time step [s], > 0 (round(T / dt) steps)
-  long long output_every = 1;            ///< a row every K-th step (and t = 0, the last step)
+  std::string method = "cosserat";  ///< "cosserat" or "fe"
+  double duration_s = 0.0;          ///< simulated time T [s], > 0
+  double dt_s = 0.0;                ///< fixed time step [s], > 0 (round(T / dt) steps)
+  long long output_every = 1;       ///< a row every K-th step (and t = 0, the last step)
   /// Adaptive time steps instead of dt_s (method::run_adaptive): the relative tolerance of the
   /// local error per rod length, in (0, 1); with it output_every_s is required and dt_s and
   /// output_every are refused.
