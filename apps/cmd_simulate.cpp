@@ -133,12 +133,19 @@ void add_simulate_command(CLI::App& app) {
 
     Output out(f.out);
     std::ostream& os = out.stream();
-    rod::write_trajectory_header(os, model, adaptive);
+    // The header with the first row (or the failure line): a run refused before it starts (the
+    // shooting method with --rtol) writes nothing.
+    bool header_written = false;
+    const auto header = [&] {
+      if (!header_written) rod::write_trajectory_header(os, model, adaptive);
+      header_written = true;
+    };
     std::string pvd;
     int frame = 0;
     study::SimulationHooks hooks;
     double row_t_s = 0.0;  // the time of the row a frame belongs to (on_row comes first)
     hooks.on_row = [&](const rod::TrajectoryRow& row) {
+      header();
       rod::write_trajectory_row(os, row);
       row_t_s = row.t_s;
     };
@@ -161,6 +168,7 @@ void add_simulate_command(CLI::App& app) {
       last_done = k;
     };
     const rod::TrajectoryOutcome s = study::simulate(model, o, hooks, study::OptionNames::kFlags);
+    header();
     if (!s.ok) os << "# " << s.message << '\n';
     out.commit();
     if (adaptive) {
