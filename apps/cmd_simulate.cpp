@@ -51,7 +51,20 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("scenario", flags->scenario, "scenario file (tcasim.scenario/1)")->required();
   study::SimulationOptions& opts = flags->o;  // bound to the flags
   cmd->add_option("--duration-s", opts.duration_s, "simulated time T [s] (> 0)")->required();
-  cmd->add_option("--dt-s", opts.dt_s, "time step [s] (> 0)")->required();
+  // Exactly one of the two time-step modes: fixed steps (--dt-s) or error-controlled ones
+  // (--rtol, with --output-every-s).
+  auto* dt_flag = cmd->add_option("--dt-s", opts.dt_s, "fixed time step [s] (> 0); or --rtol");
+  auto* rtol_flag = cmd->add_option(
+      "--rtol", opts.rtol,
+      "adaptive time steps instead of --dt-s (fe only so far): relative tolerance in (0, 1) of "
+      "each step's local error estimate, per rod length; steps are rejected and retried "
+      "smaller, grown where the motion is smooth, and land on the output times and the jumps "
+      "of the scenario's time profiles; the trajectory gets a dt_s column");
+  cmd->add_option("--atol-m", opts.atol_m,
+                  "with --rtol: absolute tolerance of the local error [m] (>= 0, default 0); "
+                  "a step is accepted when its error <= atol + rtol L");
+  cmd->add_option("--output-every-s", opts.output_every_s,
+                  "with --rtol (required): a row every this many seconds, in (0, duration]");
   cmd->add_option("--method", opts.method,
                   "solver: cosserat (shooting, BDF-alpha) or fe (beam elements, Lie-group "
                   "generalized-alpha)");
@@ -106,17 +119,33 @@ void add_simulate_command(CLI::App& app) {
       if (flag->count() > 0) given.push_back({key, flag->as<std::string>()});
     }
     study::refuse_other_method_options(o.method, given, study::OptionNames::kFlags);
+    if (dt_flag->count() > 0 && rtol_flag->count() > 0) {
+      throw InputError("--dt-s", dt_flag->as<std::string>(),
+                       "cannot be given with --rtol (fixed or adaptive time steps: one of them)");
+    }
+    if (dt_flag->count() == 0 && rtol_flag->count() == 0) {
+      throw InputError("--dt-s", "missing",
+                       "one of --dt-s (fixed time steps) or --rtol (adaptive) is required");
+    }
+    const bool adaptive = rtol_flag->count() > 0;
     const long long n_steps = study::check_simulation_options(o, study::OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(f.scenario);
 
     Output out(f.out);
     std::ostream& os = out.stream();
-    rod::write_trajectory_header(os, model);
+    // The header with the first row (or the failure line): a run refused before it starts (the
+    // shooting method with --rtol) writes nothing.
+    bool header_written = false;
+    const auto header = [&] {
+      if (!header_written) rod::write_trajectory_header(os, model, adaptive);
+      header_written = true;
+    };
     std::string pvd;
     int frame = 0;
     study::SimulationHooks hooks;
     double row_t_s = 0.0;  // the time of the row a frame belongs to (on_row comes first)
     hooks.on_row = [&](const rod::TrajectoryRow& row) {
+      header();
       rod::write_trajectory_row(os, row);
       row_t_s = row.t_s;
     };
@@ -130,13 +159,24 @@ void add_simulate_command(CLI::App& app) {
       };
     }
     ProgressReporter progress(stderr, "tcasim simulate", static_cast<std::size_t>(n_steps),
-                              "steps");
-    hooks.on_step = [&progress](long long k, long long n) {
-      if (n >= 1000) progress.update(static_cast<std::size_t>(k));
+                              adaptive ? "output periods" : "steps");
+    long long last_done = -1;
+    hooks.on_step = [&progress, &last_done, adaptive](long long k, long long n) {
+      // Adaptive: the outputs done, once each (many steps share one output period).
+      if (adaptive && k != last_done) progress.update(static_cast<std::size_t>(k));
+      if (!adaptive && n >= 1000) progress.update(static_cast<std::size_t>(k));
+      last_done = k;
     };
     const rod::TrajectoryOutcome s = study::simulate(model, o, hooks, study::OptionNames::kFlags);
+    header();
     if (!s.ok) os << "# " << s.message << '\n';
     out.commit();
+    if (adaptive) {
+      fmt::print(stderr,
+                 "tcasim simulate: {} time steps accepted, {} rejected by the error test, {} "
+                 "retried after a failed Newton iteration\n",
+                 s.steps_done, s.steps_rejected, s.steps_failed);
+    }
     if (!f.vtk_dir.empty()) write_pvd(f.vtk_dir, pvd);
     if (!s.ok) {
       fmt::print(stderr, "tcasim simulate: {}\n", s.message);

@@ -28,11 +28,12 @@ struct Trajectory {
   std::vector<std::string> columns;
   std::vector<rod::TrajectoryRow> rows;
   rod::TrajectoryOutcome outcome;
+  bool adaptive = false;  // rows carry dt_s (the last column)
 
   /// The CSV text of `tcasim simulate --out`.
   std::string csv() const {
     std::ostringstream os;
-    rod::write_trajectory_header(os, *model);
+    rod::write_trajectory_header(os, *model, adaptive);
     for (const rod::TrajectoryRow& r : rows) rod::write_trajectory_row(os, r);
     if (!outcome.ok) os << "# " << outcome.message << '\n';
     return os.str();
@@ -109,7 +110,14 @@ void register_simulate(py::module_& m) {
           "Why the run stopped early (\"\" when completed); the CSV's last line is \"# \" + it.")
       .def_property_readonly(
           "steps_done", [](const Trajectory& t) { return t.outcome.steps_done; },
-          "Converged time steps.")
+          "Converged (accepted) time steps.")
+      .def_property_readonly(
+          "steps_rejected", [](const Trajectory& t) { return t.outcome.steps_rejected; },
+          "Adaptive steps (rtol): steps undone and retried smaller by the error test.")
+      .def_property_readonly(
+          "steps_failed", [](const Trajectory& t) { return t.outcome.steps_failed; },
+          "Adaptive steps (rtol): steps undone and retried at a quarter after a failed Newton "
+          "iteration.")
       .def(
           "__getitem__",
           [](const Trajectory& t, const std::string& name) {
@@ -139,10 +147,10 @@ void register_simulate(py::module_& m) {
   m.def(
       "simulate",
       [](py::object scenario, const std::string& method, py::object duration_s, py::object dt_s,
-         py::object output_every, py::object max_iterations, bool release_tip_load,
-         py::object viscosity_Pa_s, py::object tip_mass_kg, py::object alpha, py::object steps,
-         py::object elements, py::object order, py::object rho_inf, py::object progress,
-         bool check) {
+         py::object rtol, py::object atol_m, py::object output_every_s, py::object output_every,
+         py::object max_iterations, bool release_tip_load, py::object viscosity_Pa_s,
+         py::object tip_mass_kg, py::object alpha, py::object steps, py::object elements,
+         py::object order, py::object rho_inf, py::object progress, bool check) {
         const std::shared_ptr<Scenario> sc = as_scenario(scenario);
         study::check_method(method, study::OptionNames::kPython);
         // A keyword of the other method is refused, not ignored.
@@ -157,7 +165,19 @@ void register_simulate(py::module_& m) {
         study::SimulationOptions o;
         o.method = method;
         o.duration_s = number_arg(duration_s, "duration_s");
-        o.dt_s = number_arg(dt_s, "dt_s");
+        // Exactly one of the two time-step modes, as the command's --dt-s and --rtol.
+        if (!dt_s.is_none() && !rtol.is_none()) {
+          throw InputError("dt_s", py::str(dt_s).cast<std::string>(),
+                           "cannot be given with rtol (fixed or adaptive time steps: one of them)");
+        }
+        if (dt_s.is_none() && rtol.is_none()) {
+          throw InputError("dt_s", "None",
+                           "one of dt_s (fixed time steps) or rtol (adaptive) is required");
+        }
+        if (!dt_s.is_none()) o.dt_s = number_arg(dt_s, "dt_s");
+        o.rtol = optional_number_arg(rtol, "rtol");
+        o.atol_m = optional_number_arg(atol_m, "atol_m");
+        o.output_every_s = optional_number_arg(output_every_s, "output_every_s");
         o.output_every = integer_arg(output_every, "output_every");
         o.max_iterations = integer_arg(max_iterations, "max_iterations");
         o.release_tip_load = release_tip_load;
@@ -173,7 +193,8 @@ void register_simulate(py::module_& m) {
 
         auto traj = std::make_shared<Trajectory>();
         traj->model = sc->model;
-        traj->columns = rod::trajectory_columns(*sc->model);
+        traj->adaptive = o.rtol.has_value();
+        traj->columns = rod::trajectory_columns(*sc->model, traj->adaptive);
         study::SimulationHooks hooks;
         hooks.on_row = [&traj](const rod::TrajectoryRow& r) { traj->rows.push_back(r); };
         if (!progress.is_none()) {
@@ -200,12 +221,13 @@ void register_simulate(py::module_& m) {
         return out;
       },
       py::arg("scenario"), py::arg("method") = "cosserat", py::kw_only(), py::arg("duration_s"),
-      py::arg("dt_s"), py::arg("output_every") = 1, py::arg("max_iterations") = 30,
-      py::arg("release_tip_load") = false, py::arg("viscosity_Pa_s") = py::none(),
-      py::arg("tip_mass_kg") = py::none(), py::arg("alpha") = py::none(),
-      py::arg("steps") = py::none(), py::arg("elements") = py::none(),
-      py::arg("order") = py::none(), py::arg("rho_inf") = py::none(),
-      py::arg("progress") = py::none(), py::arg("check") = true,
+      py::arg("dt_s") = py::none(), py::arg("rtol") = py::none(), py::arg("atol_m") = py::none(),
+      py::arg("output_every_s") = py::none(), py::arg("output_every") = 1,
+      py::arg("max_iterations") = 30, py::arg("release_tip_load") = false,
+      py::arg("viscosity_Pa_s") = py::none(), py::arg("tip_mass_kg") = py::none(),
+      py::arg("alpha") = py::none(), py::arg("steps") = py::none(),
+      py::arg("elements") = py::none(), py::arg("order") = py::none(),
+      py::arg("rho_inf") = py::none(), py::arg("progress") = py::none(), py::arg("check") = true,
       fmt::format(
           R"(Rod dynamics of one scenario from its static state at t = 0, as `tcasim simulate`
 (the same numbers): the scenario's time profiles, viscosity and tip mass.
@@ -213,8 +235,14 @@ void register_simulate(py::module_& m) {
 scenario: a tcasim.Scenario, a dict or a file path.
 method: "cosserat" (shooting, BDF-alpha in time) or "fe" (beam elements, Lie-group
     generalized-alpha).
-duration_s: simulated time T [s] (> 0); dt_s: time step [s] (> 0), round(T / dt) steps.
-output_every: a row every K-th step (and t = 0 and the last step; default 1).
+duration_s: simulated time T [s] (> 0); dt_s: fixed time step [s] (> 0), round(T / dt)
+    steps; or, instead of dt_s, adaptive steps (fe only so far):
+rtol: relative tolerance in (0, 1) of each step's local error estimate per rod length L,
+    with atol_m: absolute tolerance [m] (>= 0, default 0): a step is accepted when its
+    error <= atol_m + rtol L (docs/scenario-format.md "Adaptive time steps");
+    output_every_s: (required with rtol) a row every this many seconds; the trajectory gets
+    a last column dt_s, the size of the step that reached the row.
+output_every: fixed steps, a row every K-th step (and t = 0 and the last step; default 1).
 max_iterations: Newton iterations per time step (default 30, in [1, {}]).
 release_tip_load: the scenario's tip load acts at t = 0 only (a released cantilever).
 viscosity_Pa_s: Kelvin-Voigt viscosity [Pa s], constant along s (default: the scenario's).
@@ -225,7 +253,8 @@ steps: cosserat, RK4 steps along s, in [1, {}] (default: enough for the time ste
 elements, order: fe, number of elements in [1, {}] (default 16) and their order, 1 or 2
     (default 2).
 rho_inf: fe, generalized-alpha spectral radius at infinite frequency in [0, 1] (default 0.9).
-progress: optional callable progress(done_steps, total_steps), called after each step.
+progress: optional callable progress(done, total), called after each step: steps done of
+    the total, with rtol output periods done.
 check: raise tcasim.SolverError (the partial trajectory as .result) when the static state or
     a time step fails (default); with check=False the trajectory is returned with
     completed False.

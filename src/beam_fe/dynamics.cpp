@@ -109,6 +109,21 @@ struct BeamDynamics::Impl {
   bool factored = false;           // lu holds a factorization of an earlier step Jacobian
   std::vector<int> inertia_slots;  // value index of every inertia entry, in assembly order
   Discretization::Floor floor{0.0, 0.0};
+  double local_error = 0.0;  // local_error_m() of the last converged step
+  // The state before the last step() call (undo_step); valid until undone.
+  struct Saved {
+    bool valid = false;
+    State st;
+    VectorXd v, vd, a, x_last;
+    double t = 0.0, local_error = 0.0;
+    rod::ElectricThermalStates thermal;
+    std::vector<std::vector<double>> temperatures_conv;
+    damping::StrainRateHistory::Snapshot kv;
+  } saved;
+  /// The step size h and what depends on it (c_a, c_e, the damping's c_e B and round-off floor).
+  void set_step_size(double h_new);
+  /// [Zienkiewicz1991]-type estimate of the step's local error (docs/conventions.md).
+  double estimate_local_error() const;
 };
 
 BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : model(m), opt(o) {
@@ -199,6 +214,45 @@ BeamDynamics::Impl::Impl(const rod::RodModel& m, const DynamicsOptions& o) : mod
     floor = disc_static->round_off_floor(cB_se, cB_bt);
   }
   v = vd = a = VectorXd::Zero(free_dofs);
+}
+
+void BeamDynamics::Impl::set_step_size(double h_new) {
+  const double ratio = h_new / h;
+  // The acceleration variable lags: a_n = vdot(t_n + (alpha_m - alpha_f) h) + O(h^2)
+  // ([Chung1993]), a shift proportional to the step size. Rescaling a_n - vdot_n with the step
+  // keeps a_n consistent with the new step (no spurious a-mode excited by a size change).
+  a = vd + ratio * (a - vd);
+  h = h_new;
+  c_a = (1.0 - ap.alpha_m) / ((1.0 - ap.alpha_f) * ap.beta * h);
+  c_e = ap.gamma / (ap.beta * h);
+  if (kv) {
+    kv->set_time_step(h);
+    const auto [cB_se, cB_bt] = kv->max_added_stiffness();
+    floor = disc_static->round_off_floor(cB_se, cB_bt);
+  }
+  // The step Jacobian scales with 1/h (inertia) and h (stiffness): a factorization of a much
+  // different step size makes chord iterations contract poorly, so it is not reused.
+  constexpr double kMaxReuseRatio = 1.5;
+  if (ratio > kMaxReuseRatio || ratio < 1.0 / kMaxReuseRatio) factored = false;
+}
+
+double BeamDynamics::Impl::estimate_local_error() const {
+  // Local error of the Newmark position update q1 = q + h v + h^2 ((1/2 - beta) a + beta a1)
+  // against the third-order Taylor expansion q + h v + h^2/2 vdot + h^3/6 vdot', with the
+  // generalized-alpha acceleration variable a_n = vdot(t_n + (alpha_m - alpha_f) h) + O(h^2)
+  // ([Chung1993]; alpha_m - alpha_f = 1/2 - gamma) and vdot' ~ (a1 - a) / h
+  // ([Zienkiewicz1991] for Newmark):
+  //   e = (beta + (alpha_m - alpha_f)/2 - 1/6) h^3 vdot' = (beta - gamma/2 + 1/12) h^2 (a1 - a),
+  // > 0 for every rho_inf ((gamma - 1/2)^2 / 4 + 1/12). The same on the rotation rows (body
+  // frame, the Lie-algebra increment h x), times L.
+  const double c = (ap.beta - 0.5 * ap.gamma + 1.0 / 12.0) * h * h;
+  double e = 0.0;
+  for (int k = 0; k + 1 < nodes; ++k) {
+    const int b = 6 * k;
+    e = std::max(e, c * (a1.segment<3>(b) - a.segment<3>(b)).norm());
+    e = std::max(e, c * L * (a1.segment<3>(b + 3) - a.segment<3>(b + 3)).norm());
+  }
+  return e;
 }
 
 void BeamDynamics::Impl::set_loads(const rod::Loads& loads) {
@@ -405,12 +459,25 @@ BeamDynamicsSummary BeamDynamics::initialize(const rod::Loads& loads) {
   }
   if (d.kv) d.kv->reset(d.st);
   d.keep_temperatures();
+  d.local_error = 0.0;
+  d.saved.valid = false;
   return sum;
 }
 
 BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
   Impl& d = *impl_;
   BeamDynamicsSummary sum;
+  d.saved.valid = true;
+  d.saved.st = d.st;
+  d.saved.v = d.v;
+  d.saved.vd = d.vd;
+  d.saved.a = d.a;
+  d.saved.x_last = d.x_last;
+  d.saved.t = d.t;
+  d.saved.local_error = d.local_error;
+  d.saved.thermal = d.thermal;
+  d.saved.temperatures_conv = d.temperatures_conv;
+  if (d.kv) d.saved.kv = d.kv->snapshot();
   // Electric drives: the temperatures over [t, t + dt] first (they do not depend on the
   // mechanics), then the mechanics at the new temperatures.
   const rod::ElectricThermalStates thermal_n = d.thermal;
@@ -478,6 +545,7 @@ BeamDynamicsSummary BeamDynamics::step(const rod::Loads& loads) {
     fresh = !d.opt.reuse_factorization;
   }
   sum.status = BeamDynamicsSummary::Status::kConverged;
+  d.local_error = d.estimate_local_error();
   if (d.kv) d.kv->advance(d.trial);
   d.st = d.trial;
   d.v = d.v1;
@@ -499,6 +567,31 @@ VectorXd BeamDynamics::step_residual(const rod::Loads& loads, const VectorXd& x,
     if (Jac) Jac->row(i) /= unit;
   }
   return r;
+}
+
+void BeamDynamics::set_time_step(double dt_s) {
+  require(std::isfinite(dt_s) && dt_s > 0.0, "dynamics.dt_s", dt_s, "must be > 0");
+  if (dt_s != impl_->h) impl_->set_step_size(dt_s);
+}
+
+double BeamDynamics::local_error_m() const { return impl_->local_error; }
+
+int BeamDynamics::error_order() const { return 2; }
+
+void BeamDynamics::undo_step() {
+  Impl& d = *impl_;
+  if (!d.saved.valid) return;
+  d.st = d.saved.st;
+  d.v = d.saved.v;
+  d.vd = d.saved.vd;
+  d.a = d.saved.a;
+  d.x_last = d.saved.x_last;
+  d.t = d.saved.t;
+  d.local_error = d.saved.local_error;
+  d.thermal = d.saved.thermal;
+  d.temperatures_conv = d.saved.temperatures_conv;
+  if (d.kv) d.kv->restore(d.saved.kv);
+  d.saved.valid = false;
 }
 
 double BeamDynamics::time_s() const { return impl_->t; }

@@ -89,7 +89,8 @@ struct AlphaParameters {
 };
 AlphaParameters alpha_parameters(double rho_inf);
 
-/// FE dynamics of one model: static initialization at t = 0, then fixed time steps. Holds a
+/// FE dynamics of one model: static initialization at t = 0, then time steps (of
+/// DynamicsOptions::dt_s, or as set by set_time_step). Holds a
 /// reference to the model (it must outlive the solver). Tension drives and TCA drives (by
 /// temperature from the loads, or electric: thermal states advanced with each step), strings
 /// anchored inside the body; a tip constraint is refused with DomainError (as in
@@ -107,8 +108,25 @@ class BeamDynamics {
   /// Advances by dt_s under `loads` (the loads at the new time t + dt).
   BeamDynamicsSummary step(const rod::Loads& loads);
 
+  /// Sets the size of the following time steps [s] (finite, > 0; InputError naming
+  /// "dynamics.dt_s" otherwise). The integrator's history (q, v, vdot, a) is kept:
+  /// generalized-alpha is a one-step method (docs/conventions.md "Variable time steps").
+  void set_time_step(double dt_s);
+  /// Estimated local (one-step) error of the last converged step(): the largest, over the
+  /// nodes, of the position error estimate |e_p| [m] and L |e_theta| (rotation error times rod
+  /// length), e = (beta - gamma/2 + 1/12) dt^2 (a_{n+1} - a_n) per node (docs/conventions.md
+  /// "Variable time steps"). 0 before the first step.
+  double local_error_m() const;
+  /// Order p of the method: local error ~ dt^(p+1) (2).
+  int error_order() const;
+  /// Returns to the state just before the last step() call (converged or not): nodal state,
+  /// velocities, accelerations and the alpha-history, time, TCA tensions, thermal states of
+  /// electric drives, the Kelvin-Voigt history, the local error. One level only; a no-op
+  /// before any step. The time step size stays as set.
+  void undo_step();
+
   double time_s() const;
-  double time_step_s() const;  ///< DynamicsOptions::dt_s
+  double time_step_s() const;  ///< the size of the next step (DynamicsOptions::dt_s unless set)
   const State& state() const;  ///< nodal configuration of the last converged step
   const Discretization& discretization() const;
   /// Per free node (6 each): velocities (v_a world, W_a body) of the last converged step.

@@ -211,4 +211,10 @@ void StrainRateHistory::advance(const State& state) {
   }
 }
 
+void StrainRateHistory::set_time_step(double dt_s) {
+  h_ = dt_s;
+  c_e_ = ap_.gamma / (ap_.beta * dt_s);
+  for (std::size_t k = 0; k < B_.size(); ++k) cB_[k] = c_e_ * B_[k];
+}
+
 }  // namespace tcasim::beam_fe::damping

@@ -1,6 +1,10 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <ostream>
+#include <type_traits>
 #include <utility>
 
 #include "common/error.hpp"
@@ -51,12 +55,50 @@ StepSummary summary_of(const Summary& s) {
   return out;
 }
 
+/// Calls f(method) with the method's dynamics for the adaptive-step interface
+/// (set_time_step, local_error_m, error_order, undo_step).
+/// ---- MERGE POINT (issue 35): cosserat::RodDynamics gains the same four calls on another
+/// branch. Until it is merged the shooting method refuses adaptive steps here, and only here;
+/// then this whole function body becomes `return std::visit([&](auto& s) { return f(s.dyn); },
+/// solver);`. ----
+template <class Variant, class F>
+auto with_adaptive_method(Variant& solver, F&& f) {
+  using Result = decltype(f(std::declval<beam_fe::BeamDynamics&>()));
+  return std::visit(
+      [&](auto& s) -> Result {
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, Shooting>) {
+          throw DomainError("adaptive time steps: not yet available for the shooting method");
+        } else {
+          return f(s.dyn);
+        }
+      },
+      solver);
+}
+
 }  // namespace
 
 struct DynamicSolver::Impl {
   const rod::RodModel& model;
   std::variant<Shooting, Fe> solver;
 };
+
+void DynamicSolver::set_time_step(double dt_s) {
+  with_adaptive_method(impl_->solver, [&](auto& dyn) { dyn.set_time_step(dt_s); });
+}
+
+double DynamicSolver::local_error_m() const {
+  return with_adaptive_method(impl_->solver, [](const auto& dyn) { return dyn.local_error_m(); });
+}
+
+int DynamicSolver::error_order() const {
+  return with_adaptive_method(impl_->solver, [](const auto& dyn) { return dyn.error_order(); });
+}
+
+void DynamicSolver::undo_step() {
+  with_adaptive_method(impl_->solver, [](auto& dyn) { dyn.undo_step(); });
+}
+
+double DynamicSolver::rod_length_m() const { return impl_->model.length_m; }
 
 const char* name(const DynamicOptions& options) {
   return std::holds_alternative<cosserat::DynamicsOptions>(options) ? "cosserat" : "fe";
@@ -173,6 +215,173 @@ rod::TrajectoryOutcome run(DynamicSolver& solver, const rod::LoadsAt& loads_at, 
     out.steps_done = k;
     if (k % output_every == 0 || k == steps) on_output(solver);
     if (on_step) on_step(k);
+  }
+  out.ok = true;
+  return out;
+}
+
+std::vector<double> time_breakpoints(const rod::RodModel& model, double t_end_s) {
+  std::vector<double> t;
+  const auto add = [&](const TimeProfile& p) {
+    if (p.is_constant()) return;
+    for (const double b : p.breakpoints(0.0, t_end_s))
+      if (b < t_end_s) t.push_back(b);
+  };
+  for (const rod::Actuator& a : model.actuators) {
+    add(a.drive.tension_profile_N);
+    for (const TimeProfile& p : a.drive.temperature_profiles_K) add(p);
+    for (const rod::ElectricSegment& e : a.drive.electric) add(e.value);
+  }
+  for (const TimeProfile& p : model.tip_force_profile_W_N) add(p);
+  for (const TimeProfile& p : model.tip_moment_profile_W_Nm) add(p);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+rod::TrajectoryOutcome run_adaptive(
+    DynamicSolver& solver, const rod::LoadsAt& loads_at, double duration_s,
+    const AdaptiveOptions& o,
+    const std::function<void(const DynamicSolver&, double dt_s)>& on_output,
+    const std::function<void(double t_s)>& on_step) {
+  require(std::isfinite(duration_s) && duration_s > 0.0, "duration_s", duration_s, "must be > 0");
+  require(o.rtol > 0.0 && o.rtol < 1.0, "rtol", o.rtol, "must be in (0, 1)");
+  require(std::isfinite(o.atol_m) && o.atol_m >= 0.0, "atol_m", o.atol_m, "must be >= 0");
+  require(std::isfinite(o.output_every_s) && o.output_every_s > 0.0, "output_every_s",
+          o.output_every_s, "must be > 0");
+  require(std::isfinite(o.dt_min_s) && o.dt_min_s > 0.0, "dt_min_s", o.dt_min_s, "must be > 0");
+  require(o.dt_max_s >= o.dt_min_s, "dt_max_s", o.dt_max_s, "must be >= dt_min_s");
+  require(std::isfinite(o.dt_initial_s) && o.dt_initial_s > 0.0, "dt_initial_s", o.dt_initial_s,
+          "must be > 0");
+  const int p = solver.error_order();  // the shooting method refuses here, before any work
+  rod::TrajectoryOutcome out;
+  const StepSummary init = solver.initialize(loads_at(0.0));
+  if (!init.converged) {
+    out.status = init.status;
+    out.message =
+        fmt::format("static initial state did not converge ({}): {}", out.status, init.message);
+    return out;
+  }
+  on_output(solver, 0.0);
+
+  // The times the steps land on: outputs (k T_out, and the end) and the profiles' jumps. A time
+  // within a relative 1e-9 of a larger one is dropped (no sliver step between them).
+  struct Event {
+    double t;
+    bool output;
+    bool breakpoint;
+  };
+  std::vector<Event> events;
+  const double n_out = std::floor(duration_s / o.output_every_s * (1.0 + 1e-12));
+  for (double k = 1; k <= n_out; ++k) events.push_back({k * o.output_every_s, true, false});
+  events.push_back({duration_s, true, false});
+  for (const double b : o.breakpoints_s)
+    if (b > 0.0 && b < duration_s) events.push_back({b, false, true});
+  std::sort(events.begin(), events.end(),
+            [](const Event& a, const Event& b) { return a.t < b.t || (a.t == b.t && a.output); });
+  std::vector<Event> merged;
+  for (const Event& e : events) {
+    if (!merged.empty() && e.t - merged.back().t <= 1e-9 * e.t) {
+      merged.back().output = merged.back().output || e.output;
+      merged.back().breakpoint = merged.back().breakpoint || e.breakpoint;
+      merged.back().t = std::max(merged.back().t, e.t);
+      continue;
+    }
+    merged.push_back(e);
+  }
+  merged.back().t = duration_s;
+
+  // err = local error / (atol + rtol L); new size dt clamp(0.9 err^(-1/(p+1)), 0.2, 5)
+  // ([Hairer1993] II.4, the elementary controller).
+  const double tol_m = o.atol_m + o.rtol * solver.rod_length_m();
+  constexpr double kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 5.0, kNewtonCut = 0.25;
+  const auto factor_of = [&](double err) {
+    if (!(err > 0.0)) return kMaxFactor;
+    return std::clamp(kSafety * std::pow(err, -1.0 / (p + 1)), kMinFactor, kMaxFactor);
+  };
+  double t = 0.0;
+  double dt = std::min(o.dt_initial_s, o.dt_max_s);
+  std::size_t next = 0;
+  bool after_rejection = false;  // no growth right after a rejection ([Hairer1993] II.4)
+  // At t = 0 and after a breakpoint the loads jump while the methods' acceleration history is
+  // that of before (the generalized-alpha a_n, BDF-alpha's history): an error of the first
+  // steps' size in the velocities, which the position error estimate does not see and which
+  // the history carries on, decaying by its spurious root per step (-0.73 at rho_inf 0.9). So
+  // the run restarts there from dt_initial_s, growing at most kRestartGrowth per step for
+  // kRestartSteps steps (docs/conventions.md "Variable time steps").
+  constexpr double kRestartGrowth = 1.5;
+  constexpr int kRestartSteps = 20;
+  int since_restart = 0;
+  const auto fail = [&](double t_new, std::string status, std::string message) {
+    out.status = std::move(status);
+    out.message =
+        fmt::format("time step to t = {:.9g} s failed ({}): {}", t_new, out.status, message);
+    return out;
+  };
+  while (next < merged.size()) {
+    const double target = merged[next].t;
+    const double remaining = target - t;
+    // Land on the target: the whole remainder when the step reaches it, half of it when less
+    // than two steps remain (no sliver step before the target).
+    const bool landing = remaining <= dt;
+    const double h = landing ? remaining : remaining < 2.0 * dt ? 0.5 * remaining : dt;
+    const double t_new = landing ? target : t + h;
+    if (h < o.dt_min_s && !landing) {
+      return fail(
+          t_new, "dt-min",
+          fmt::format("the step size {:.3e} s is below dt_min_s = {:.3e} s", h, o.dt_min_s));
+    }
+    if (out.steps_done + out.steps_rejected + out.steps_failed >= o.max_steps) {
+      return fail(t_new, "max-steps", fmt::format("{} steps taken", o.max_steps));
+    }
+    solver.set_time_step(h);
+    const StepSummary s = solver.step(loads_at(t_new));
+    if (!s.converged) {
+      solver.undo_step();
+      ++out.steps_failed;
+      dt = kNewtonCut * h;
+      if (dt < o.dt_min_s) {
+        return fail(t_new, s.status,
+                    fmt::format("{} (step size {:.3e} s, the next {:.3e} s < dt_min_s = {:.3e} s)",
+                                s.message, h, dt, o.dt_min_s));
+      }
+      continue;
+    }
+    const double local_m = solver.local_error_m();
+    const double err = local_m / tol_m;
+    double factor = after_rejection ? std::min(factor_of(err), 1.0) : factor_of(err);
+    if (since_restart < kRestartSteps) factor = std::min(factor, kRestartGrowth);
+    after_rejection = !(err <= 1.0);
+    if (!(err <= 1.0)) {
+      solver.undo_step();
+      ++out.steps_rejected;
+      dt = h * std::min(factor, kSafety);
+      if (dt < o.dt_min_s) {
+        return fail(t_new, "dt-min",
+                    fmt::format("error estimate {:.3e} m above the tolerance {:.3e} m at step size "
+                                "{:.3e} s; the next {:.3e} s < dt_min_s = {:.3e} s",
+                                local_m, tol_m, h, dt, o.dt_min_s));
+      }
+      continue;
+    }
+    t = t_new;
+    ++out.steps_done;
+    // A step shortened to land keeps the proposal for the next one, unless its own error asks
+    // for less.
+    const bool shortened = h < dt;
+    dt = std::min(shortened ? std::max(dt, h * factor) : h * factor, o.dt_max_s);
+    if (shortened && factor < 1.0) dt = std::min(dt, h * factor);
+    dt = std::max(dt, o.dt_min_s);
+    if (on_step) on_step(t);
+    ++since_restart;
+    if (landing) {
+      if (merged[next].output) on_output(solver, h);
+      if (!merged[next].output || merged[next].breakpoint) {
+        since_restart = 0;
+        dt = std::min(dt, o.dt_initial_s);
+      }
+      ++next;
+    }
   }
   out.ok = true;
   return out;

@@ -8,7 +8,7 @@
 
 namespace tcasim::rod {
 
-std::vector<std::string> trajectory_columns(const RodModel& model) {
+std::vector<std::string> trajectory_columns(const RodModel& model, bool with_dt) {
   std::vector<std::string> c = {"t_s", "tip_x_m", "tip_y_m", "tip_z_m", "kinetic_energy_J"};
   for (const auto& a : model.actuators) {
     c.push_back(a.name + "_tension_N");
@@ -24,11 +24,12 @@ std::vector<std::string> trajectory_columns(const RodModel& model) {
   for (const auto& p : model.probes) {
     for (const char* axis : {"_x_m", "_y_m", "_z_m"}) c.push_back(p.name + axis);
   }
+  if (with_dt) c.push_back("dt_s");
   return c;
 }
 
-void write_trajectory_header(std::ostream& os, const RodModel& model) {
-  const std::vector<std::string> columns = trajectory_columns(model);
+void write_trajectory_header(std::ostream& os, const RodModel& model, bool with_dt) {
+  const std::vector<std::string> columns = trajectory_columns(model, with_dt);
   for (std::size_t i = 0; i < columns.size(); ++i) os << (i > 0 ? "," : "") << columns[i];
   os << '\n';
 }
@@ -46,6 +47,7 @@ std::vector<double> trajectory_values(const TrajectoryRow& row) {
     for (const double T_K : row.temperatures_K[i]) v.push_back(units::K_to_degC(T_K));
   }
   for (const Eigen::Vector3d& p : row.probes_W_m) v.insert(v.end(), {p.x(), p.y(), p.z()});
+  if (row.dt_s) v.push_back(*row.dt_s);
   return v;
 }
 
@@ -64,6 +66,7 @@ void write_trajectory_row(std::ostream& os, const TrajectoryRow& row) {
   }
   for (const Eigen::Vector3d& p : row.probes_W_m)
     os << fmt::format(",{:.12e},{:.12e},{:.12e}", p.x(), p.y(), p.z());
+  if (row.dt_s) os << fmt::format(",{:.6e}", *row.dt_s);
   os << '\n';
 }
 

@@ -272,5 +272,33 @@ TEST(BeamDynamicsTca, VoltageStepConvergesAtTheCrossCheckTolerance) {
   }
 }
 
+// undo_step with an electric TCA: the TCA tension, the thermal state and the segment
+// temperatures return bit for bit, and the repeated step, now at half the size, heats less.
+TEST(BeamDynamicsTca, UndoStepRestoresTensionAndThermalState) {
+  const rod::RodModel m = voltage_step_manipulator(1000.0, true);
+  DynamicsOptions o;
+  o.elements = 4;
+  o.dt_s = 5e-3;
+  BeamDynamics d(m, o);
+  ASSERT_TRUE(d.initialize(rod::Loads::from_model(m)).converged());
+  for (int k = 1; k <= 3; ++k) ASSERT_TRUE(d.step(rod::Loads::at_time(m, k * o.dt_s)).converged());
+  const std::vector<double> T0 = d.tensions_N();
+  const std::vector<std::vector<double>> temp0 = d.segment_temperatures_K();
+  const double t0 = d.time_s();
+  ASSERT_TRUE(d.step(rod::Loads::at_time(m, t0 + o.dt_s)).converged());
+  const double heated_full = d.segment_temperatures_K()[0][0] - temp0[0][0];
+  EXPECT_GT(heated_full, 0.0);
+  EXPECT_NE(d.tensions_N(), T0);
+  d.undo_step();
+  EXPECT_EQ(d.tensions_N(), T0);
+  EXPECT_EQ(d.segment_temperatures_K(), temp0);
+  EXPECT_EQ(d.time_s(), t0);
+  d.set_time_step(0.5 * o.dt_s);
+  ASSERT_TRUE(d.step(rod::Loads::at_time(m, t0 + 0.5 * o.dt_s)).converged());
+  const double heated_half = d.segment_temperatures_K()[0][0] - temp0[0][0];
+  EXPECT_GT(heated_half, 0.4 * heated_full);
+  EXPECT_LT(heated_half, 0.6 * heated_full);
+}
+
 }  // namespace
 }  // namespace tcasim::beam_fe::testing

@@ -168,3 +168,35 @@ def test_the_gil_is_released_while_it_runs():
     longest_gap, run = longest_gap_while(lambda: tcasim.simulate(path, duration_s=duration_s, **kw))
     assert run > 0.1, "the simulation is too short to tell"
     assert longest_gap < 0.5 * run, (longest_gap, run)
+
+
+def test_adaptive_steps_equal_the_cli_csv_with_dt_s(run_cli, tmp_path):
+    """rtol/atol_m/output_every_s are the command's --rtol/--atol-m/--output-every-s: the same
+    file, with the dt_s column last and the counts of accepted and rejected steps."""
+    path = DYNAMIC / "steel-cantilever-release.json"
+    out = tmp_path / "trajectory.csv"
+    cli = run_cli("simulate", path, "--method", "fe", "--duration-s", 0.01, "--rtol", 1e-3,
+                  "--atol-m", 1e-6, "--output-every-s", 0.005, "--release-tip-load",
+                  "--out", out)
+    assert cli.returncode == 0, cli.stderr
+    assert "time steps accepted" in cli.stderr
+    tr = tcasim.simulate(str(path), "fe", duration_s=0.01, rtol=1e-3, atol_m=1e-6,
+                         output_every_s=0.005, release_tip_load=True)
+    assert tr.to_csv() == out.read_text()
+    assert tr.columns[-1] == "dt_s"
+    np.testing.assert_allclose(tr.t_s, [0.0, 0.005, 0.01], rtol=0, atol=1e-15)
+    assert tr["dt_s"][0] == 0.0 and np.all(tr["dt_s"][1:] > 0.0)
+    assert tr.steps_done > 0 and tr.steps_rejected >= 0 and tr.steps_failed == 0
+
+
+@pytest.mark.parametrize("options,key,rule", [
+    ({"dt_s": 0.001, "rtol": 1e-3, "output_every_s": 0.005}, "dt_s", "cannot be given with rtol"),
+    ({}, "dt_s", "one of dt_s"),
+    ({"rtol": 1e-3}, "output_every_s", "is required with rtol"),
+    ({"dt_s": 0.001, "atol_m": 1e-6}, "atol_m", "applies with rtol only"),
+])
+def test_one_time_step_mode_is_required(options, key, rule):
+    with pytest.raises(tcasim.InputError) as e:
+        tcasim.simulate(str(DYNAMIC / "steel-cantilever-release.json"), "fe", duration_s=0.01,
+                        **options)
+    assert e.value.key == key and rule in str(e.value)

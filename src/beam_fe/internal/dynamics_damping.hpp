@@ -55,6 +55,20 @@ class StrainRateHistory {
   std::pair<double, double> max_added_stiffness() const;
   /// The step to `state` converged: eps, eps_t, a_eps move to n + 1.
   void advance(const State& state);
+  /// Sets the size of the following steps [s] (> 0): c_e = gamma / (beta dt) and c_e B anew;
+  /// the history eps, eps_t, a_eps is kept (generalized-alpha is a one-step method).
+  void set_time_step(double dt_s);
+
+  /// The history of every point (what advance changes), to return to it (undo of a step).
+  struct Snapshot {
+    std::vector<Vector6d> eps, eps_t, a_eps;
+  };
+  Snapshot snapshot() const { return {eps_, eps_t_, a_eps_}; }
+  void restore(const Snapshot& s) {
+    eps_ = s.eps;
+    eps_t_ = s.eps_t;
+    a_eps_ = s.a_eps;
+  }
 
  private:
   std::vector<Vector6d> strains(const State& state) const;
