@@ -236,7 +236,7 @@ scenario: a tcasim.Scenario, a dict or a file path.
 method: "cosserat" (shooting, BDF-alpha in time) or "fe" (beam elements, Lie-group
     generalized-alpha).
 duration_s: simulated time T [s] (> 0); dt_s: fixed time step [s] (> 0), round(T / dt)
-    steps; or, instead of dt_s, adaptive steps (fe only so far):
+    steps; or, instead of dt_s, adaptive steps (either method):
 rtol: relative tolerance in (0, 1) of each step's local error estimate per rod length L,
     with atol_m: absolute tolerance [m] (>= 0, default 0): a step is accepted when its
     error <= atol_m + rtol L (docs/scenario-format.md "Adaptive time steps");

@@ -117,6 +117,8 @@ class BeamDynamics {
   /// length), e = (beta - gamma/2 + 1/12) dt^2 (a_{n+1} - a_n) per node (docs/conventions.md
   /// "Variable time steps"). 0 before the first step.
   double local_error_m() const;
+  /// The smallest time step the method takes [s]: 0 (any; the mesh is not tied to the step).
+  double min_time_step_s() const { return 0.0; }
   /// Order p of the method: local error ~ dt^(p+1) (2).
   int error_order() const;
   /// Returns to the state just before the last step() call (converged or not): nodal state,

@@ -714,6 +714,27 @@ double RodDynamics::local_error_m() const {
 
 int RodDynamics::error_order() const { return 2; }
 
+double RodDynamics::min_time_step_s() const {
+  const Impl& d = *impl_;
+  DynamicsOptions o = d.opt;
+  auto resolved = [&](double dt) {
+    o.dt_s = dt;
+    return d.h * spatial_growth_rate(d.model, o) <= kMaxStepGrowth;
+  };
+  // kappa falls monotonically with dt: bisection in log dt between a step the grid resolves
+  // (the current one, or larger) and one it does not.
+  double hi = d.opt.dt_s;
+  while (!resolved(hi)) hi *= 2.0;
+  double lo = hi;
+  for (int k = 0; k < 200 && resolved(lo); ++k) lo *= 0.5;
+  if (resolved(lo)) return lo;  // resolves any step (no fast mode)
+  for (int k = 0; k < 60; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (resolved(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
 void RodDynamics::undo_step() {
   Impl& d = *impl_;
   Impl::Snapshot& s = d.snap;

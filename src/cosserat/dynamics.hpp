@@ -120,6 +120,9 @@ class RodDynamics {
   /// points, of the position error estimate |e_p| [m] and L |e_theta| (rotation error estimate
   /// times the rod length). 0 before the first step.
   double local_error_m() const;
+  /// The smallest time step this solver's grid along s resolves [s]: where h kappa reaches
+  /// kMaxStepGrowth (kappa grows as the step shrinks; set_time_step refuses smaller ones).
+  double min_time_step_s() const;
   /// Order p of the method: local error ~ dt^(p+1) (the step-size controller uses it).
   int error_order() const;
   /// Returns to the state just before the last step() call (converged or not): states, time,

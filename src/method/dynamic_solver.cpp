@@ -57,22 +57,11 @@ StepSummary summary_of(const Summary& s) {
 
 /// Calls f(method) with the method's dynamics for the adaptive-step interface
 /// (set_time_step, local_error_m, error_order, undo_step).
-/// ---- MERGE POINT (issue 35): cosserat::RodDynamics gains the same four calls on another
-/// branch. Until it is merged the shooting method refuses adaptive steps here, and only here;
-/// then this whole function body becomes `return std::visit([&](auto& s) { return f(s.dyn); },
-/// solver);`. ----
+/// The step-size calls of either method (cosserat::RodDynamics and beam_fe::BeamDynamics have
+/// the same four: set_time_step, local_error_m, error_order, undo_step).
 template <class Variant, class F>
 auto with_adaptive_method(Variant& solver, F&& f) {
-  using Result = decltype(f(std::declval<beam_fe::BeamDynamics&>()));
-  return std::visit(
-      [&](auto& s) -> Result {
-        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, Shooting>) {
-          throw DomainError("adaptive time steps: not yet available for the shooting method");
-        } else {
-          return f(s.dyn);
-        }
-      },
-      solver);
+  return std::visit([&](auto& s) { return f(s.dyn); }, solver);
 }
 
 }  // namespace
@@ -92,6 +81,10 @@ double DynamicSolver::local_error_m() const {
 
 int DynamicSolver::error_order() const {
   return with_adaptive_method(impl_->solver, [](const auto& dyn) { return dyn.error_order(); });
+}
+
+double DynamicSolver::min_time_step_s() const {
+  return with_adaptive_method(impl_->solver, [](const auto& dyn) { return dyn.min_time_step_s(); });
 }
 
 void DynamicSolver::undo_step() {
@@ -253,7 +246,18 @@ rod::TrajectoryOutcome run_adaptive(
   require(o.dt_max_s >= o.dt_min_s, "dt_max_s", o.dt_max_s, "must be >= dt_min_s");
   require(std::isfinite(o.dt_initial_s) && o.dt_initial_s > 0.0, "dt_initial_s", o.dt_initial_s,
           "must be > 0");
-  const int p = solver.error_order();  // the shooting method refuses here, before any work
+  const int p = solver.error_order();
+  // The shooting method's grid along s resolves steps down to its min_time_step_s: no step,
+  // first or restart, is smaller (a landing step excepted, which halves at most to it).
+  const double dt_floor = std::max(o.dt_min_s, solver.min_time_step_s());
+  const double dt_start = std::max(o.dt_initial_s, dt_floor);
+  const std::string floor_text =
+      dt_floor > o.dt_min_s
+          ? fmt::format(
+                "the smallest step the shooting grid along s resolves, {:.3e} s (more "
+                "steps along s allow smaller ones)",
+                dt_floor)
+          : fmt::format("dt_min_s = {:.3e} s", o.dt_min_s);
   rod::TrajectoryOutcome out;
   const StepSummary init = solver.initialize(loads_at(0.0));
   if (!init.converged) {
@@ -300,7 +304,7 @@ rod::TrajectoryOutcome run_adaptive(
     return std::clamp(kSafety * std::pow(err, -1.0 / (p + 1)), kMinFactor, kMaxFactor);
   };
   double t = 0.0;
-  double dt = std::min(o.dt_initial_s, o.dt_max_s);
+  double dt = std::min(dt_start, std::max(o.dt_max_s, dt_floor));
   std::size_t next = 0;
   bool after_rejection = false;  // no growth right after a rejection ([Hairer1993] II.4)
   // At t = 0 and after a breakpoint the loads jump while the methods' acceleration history is
@@ -324,12 +328,20 @@ rod::TrajectoryOutcome run_adaptive(
     // Land on the target: the whole remainder when the step reaches it, half of it when less
     // than two steps remain (no sliver step before the target).
     const bool landing = remaining <= dt;
-    const double h = landing ? remaining : remaining < 2.0 * dt ? 0.5 * remaining : dt;
-    const double t_new = landing ? target : t + h;
-    if (h < o.dt_min_s && !landing) {
-      return fail(
-          t_new, "dt-min",
-          fmt::format("the step size {:.3e} s is below dt_min_s = {:.3e} s", h, o.dt_min_s));
+    double h = landing ? remaining : remaining < 2.0 * dt ? 0.5 * remaining : dt;
+    // Not below the floor where the remainder allows: then the whole remainder at once.
+    const bool whole = !landing && h < dt_floor && remaining <= 2.0 * dt_floor;
+    if (whole) h = remaining;
+    const double t_new = landing || whole ? target : t + h;
+    if (h < dt_floor && !landing && !whole) {
+      return fail(t_new, "dt-min",
+                  fmt::format("the step size {:.3e} s is below {}", h, floor_text));
+    }
+    if (h < solver.min_time_step_s()) {
+      return fail(t_new, "dt-min",
+                  fmt::format("the step {:.3e} s to the next output or load jump is below {} "
+                              "(or move output times and profile jumps farther apart)",
+                              h, floor_text));
     }
     if (out.steps_done + out.steps_rejected + out.steps_failed >= o.max_steps) {
       return fail(t_new, "max-steps", fmt::format("{} steps taken", o.max_steps));
@@ -340,10 +352,10 @@ rod::TrajectoryOutcome run_adaptive(
       solver.undo_step();
       ++out.steps_failed;
       dt = kNewtonCut * h;
-      if (dt < o.dt_min_s) {
+      if (dt < dt_floor) {
         return fail(t_new, s.status,
-                    fmt::format("{} (step size {:.3e} s, the next {:.3e} s < dt_min_s = {:.3e} s)",
-                                s.message, h, dt, o.dt_min_s));
+                    fmt::format("{} (step size {:.3e} s, the next {:.3e} s < {})", s.message, h, dt,
+                                floor_text));
       }
       continue;
     }
@@ -356,11 +368,15 @@ rod::TrajectoryOutcome run_adaptive(
       solver.undo_step();
       ++out.steps_rejected;
       dt = h * std::min(factor, kSafety);
-      if (dt < o.dt_min_s) {
+      if (dt < dt_floor) {
+        if (h > dt_floor) {
+          dt = dt_floor;  // one more try at the floor
+          continue;
+        }
         return fail(t_new, "dt-min",
                     fmt::format("error estimate {:.3e} m above the tolerance {:.3e} m at step size "
-                                "{:.3e} s; the next {:.3e} s < dt_min_s = {:.3e} s",
-                                local_m, tol_m, h, dt, o.dt_min_s));
+                                "{:.3e} s; the next {:.3e} s < {}",
+                                local_m, tol_m, h, dt, floor_text));
       }
       continue;
     }
@@ -371,14 +387,14 @@ rod::TrajectoryOutcome run_adaptive(
     const bool shortened = h < dt;
     dt = std::min(shortened ? std::max(dt, h * factor) : h * factor, o.dt_max_s);
     if (shortened && factor < 1.0) dt = std::min(dt, h * factor);
-    dt = std::max(dt, o.dt_min_s);
+    dt = std::max(dt, dt_floor);
     if (on_step) on_step(t);
     ++since_restart;
     if (landing) {
       if (merged[next].output) on_output(solver, h);
       if (!merged[next].output || merged[next].breakpoint) {
         since_restart = 0;
-        dt = std::min(dt, o.dt_initial_s);
+        dt = std::min(dt, dt_start);
       }
       ++next;
     }

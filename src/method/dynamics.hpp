@@ -60,6 +60,10 @@ class DynamicSolver {
   double local_error_m() const;
   /// Order p of the method in time: local error ~ dt^(p+1).
   int error_order() const;
+  /// The smallest step the method can take [s]: the shooting method's grid along s resolves
+  /// the fast spatial modes of steps down to this (cosserat::RodDynamics::min_time_step_s);
+  /// 0 for the FE.
+  double min_time_step_s() const;
   /// Returns to the state just before the last step() call (one level; the method's
   /// undo_step).
   void undo_step();

@@ -135,6 +135,8 @@ namespace {
 /// The first step of adaptive steps [s], also the restart after a jump of the loads (small: the
 /// start error of the velocities is of its size; growth 1.5 per step reaches 1e-3 T in 17
 /// steps); the fixed step otherwise.
+/// The shooting method's grid along s with adaptive steps resolves steps of output period / this.
+constexpr double kAdaptiveGridSteps = 20.0;
 double first_step_s(const SimulationOptions& o) {
   return o.rtol ? std::min(*o.output_every_s, 1e-6 * o.duration_s) : o.dt_s;
 }
@@ -168,7 +170,10 @@ method::DynamicOptions dynamic_options(const rod::RodModel& model, const Simulat
     return fo;
   }
   cosserat::DynamicsOptions co;
-  co.dt_s = first_step_s(o);
+  // Adaptive: the grid along s is sized for steps of a twentieth of the output period (or of
+  // the run); the solver then resolves steps down to about half that (min_time_step_s), and
+  // run_adaptive takes none smaller. --steps sets a finer grid for smaller steps.
+  co.dt_s = o.rtol ? std::min(*o.output_every_s, o.duration_s) / kAdaptiveGridSteps : o.dt_s;
   co.alpha = o.alpha;
   co.steps = o.steps ? static_cast<int>(*o.steps) : cosserat::recommended_steps(model, co);
   co.viscosity_Pa_s = o.viscosity_Pa_s;

@@ -1,6 +1,6 @@
 // Error-controlled time steps (method::run_adaptive, method/dynamics.hpp): the error against a
 // fine fixed-step reference falls with rtol, steps land on the output times and the profiles'
-// jumps, a step size below dt_min ends the run, the shooting method refuses (for now).
+// jumps, a step size below dt_min ends the run, the shooting method's grid bounds its steps.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -139,23 +139,55 @@ TEST(AdaptiveSteps, AStepBelowDtMinEndsTheRun) {
   EXPECT_NE(s.message.find("dt_min_s = 1.000e-04 s"), std::string::npos) << s.message;
 }
 
-// Until cosserat::RodDynamics has the adaptive-step calls, the shooting method refuses them
-// before any work.
-TEST(AdaptiveSteps, TheShootingMethodRefusesForNow) {
+// The shooting method with adaptive steps on the same release, against its own fixed-step
+// reference on the same grid (steps of 50 us; the smallest step its grid resolves is kept): the
+// error falls with rtol, and no step is below the grid's smallest (min_time_step_s).
+TEST(AdaptiveSteps, ShootingErrorFallsWithRtolOnTheReleasedCantilever) {
   const rod::RodModel m = test_support::steel_cantilever_till();
+  const rod::LoadsAt released = [&m](double t) { return sag(m, t > 0.0 ? 0.0 : 0.02); };
   cosserat::DynamicsOptions co;
-  co.dt_s = 1e-3;
-  co.steps = 20;
-  DynamicSolver d(m, co);
-  AdaptiveOptions o;
-  o.output_every_s = 0.01;
-  const rod::LoadsAt loads = [&m](double) { return sag(m, 0.0); };
-  try {
-    run_adaptive(d, loads, 0.02, o, [](const DynamicSolver&, double) {});
-    FAIL() << "no DomainError";
-  } catch (const DomainError& e) {
-    EXPECT_STREQ(e.what(), "adaptive time steps: not yet available for the shooting method");
+  co.dt_s = 5e-5;  // the grid resolves steps down to about 21 us (bending: kappa ~ dt^-1/2)
+  co.steps = cosserat::recommended_steps(m, co);
+  std::vector<Eigen::Vector3d> ref;
+  {
+    DynamicSolver d(m, co);
+    ASSERT_TRUE(d.initialize(released(0.0)).converged);
+    ref.push_back(d.tip_position_W_m());
+    for (int k = 1; k <= 2000; ++k) {
+      ASSERT_TRUE(d.step(released(k * co.dt_s)).converged) << k;
+      if (k % 200 == 0) ref.push_back(d.tip_position_W_m());
+    }
   }
+  std::vector<double> errors;
+  for (const double rtol : {1e-3, 1e-4, 1e-5}) {
+    DynamicSolver d(m, co);
+    const double floor = d.min_time_step_s();
+    EXPECT_GT(floor, 0.0);
+    EXPECT_LT(floor, co.dt_s);
+    AdaptiveOptions o;
+    o.rtol = rtol;
+    o.output_every_s = 0.01;
+    std::vector<Eigen::Vector3d> tips;
+    double smallest = 1.0;
+    double t_prev = 0.0;
+    const rod::TrajectoryOutcome s = run_adaptive(
+        d, released, 0.1, o,
+        [&](const DynamicSolver& x, double) { tips.push_back(x.tip_position_W_m()); },
+        [&](double t) {
+          smallest = std::min(smallest, t - t_prev);
+          t_prev = t;
+        });
+    ASSERT_TRUE(s.ok) << s.message;
+    ASSERT_EQ(tips.size(), ref.size());
+    double e = 0.0;
+    for (std::size_t k = 0; k < tips.size(); ++k) e = std::max(e, (tips[k] - ref[k]).norm());
+    std::printf("shooting rtol %.0e: max tip error %.3e m, %lld steps accepted, %lld rejected, "
+                "smallest %.2e s (floor %.2e s)\n",
+                rtol, e, s.steps_done, s.steps_rejected, smallest, floor);
+    EXPECT_GE(smallest, floor * (1.0 - 1e-9));
+    errors.push_back(e);
+  }
+  for (std::size_t i = 1; i < errors.size(); ++i) EXPECT_GT(errors[i - 1] / errors[i], 2.0) << i;
 }
 
 // The jumps of the scenario's time profiles inside the run: a PWM tension (period 0.1 s, duty
