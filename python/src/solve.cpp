@@ -324,14 +324,15 @@ void register_solve(py::module_& m) {
               entry["moment_Nm"] = vec3(c.moment_W_Nm);
               entry["regions"] = regions;
               entry["max_penetration_m"] = c.max_penetration_m;
+              entry["core_penetration_between_m"] = c.core_penetration_between_m;
               d[py::str(c.obstacle)] = entry;
             }
             return d;
           },
           "Per obstacle (a dict name -> dict, in the scenario's order): its resultant force on "
           "the rod `force_N` (world), its moment `moment_Nm` about the base point, `regions` "
-          "(a list of {s_m: (s0, s1), force_N}) and `max_penetration_m`; empty without "
-          "obstacles (file: contacts).")
+          "(a list of {s_m: (s0, s1), force_N}), `max_penetration_m` and "
+          "`core_penetration_between_m`; empty without obstacles (file: contacts).")
       .def_property_readonly(
           "base_reaction",
           [](const Result& r) -> py::object {

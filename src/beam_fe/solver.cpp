@@ -702,6 +702,7 @@ rod::Result Solver::make_result(const rod::Loads& loads_in, const State& state,
     // A custom section has no outline: the radius metric is undefined, left empty.
     res.bending_radius_m.reset();
   }
+  rod::check_between_contact_points(model, res);
   return res;
 }
 

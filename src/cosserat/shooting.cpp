@@ -482,6 +482,7 @@ rod::Result ShootingSolver::make_result(const rod::Loads& actuation, const Solut
   }
   res.residual = summary.equilibrium_residual;
   res.characteristic_force_N = summary.characteristic_force_N;
+  rod::check_between_contact_points(impl_->model, res);
   return res;
 }
 

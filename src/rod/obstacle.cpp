@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "rod/model.hpp"
+#include "rod/result.hpp"
 
 namespace tcasim::rod {
 namespace {
@@ -288,6 +289,58 @@ struct ReferenceWalker {
 };
 
 }  // namespace
+
+void check_between_contact_points(const RodModel& model, Result& result) {
+  const auto& s = result.centerline_s_m;
+  const auto& p = result.centerline_p_W_m;
+  if (model.obstacles.empty() || result.contacts.size() != model.obstacles.size() || s.size() < 2 ||
+      p.size() != s.size()) {
+    return;
+  }
+  std::string worst;
+  for (std::size_t o = 0; o < model.obstacles.size(); ++o) {
+    const Obstacle& ob = model.obstacles[o];
+    ContactResult& c = result.contacts[o];
+    c.core_penetration_between_m = 0.0;
+    c.core_penetration_s_m = 0.0;
+    if (ob.type == Obstacle::Type::kPlane) continue;
+    double worst_ratio = 0.0, worst_spacing = 0.0;
+    for (std::size_t k = 0; k + 1 < s.size(); ++k) {
+      const double t = nearest_on_segment(ob, p[k], p[k + 1]);
+      if (!(t > 0.0 && t < 1.0)) continue;  // at a contact point: the solver's own gap
+      const double s_t = s[k] + t * (s[k + 1] - s[k]);
+      const ContactOutline out = contact_outline_at(model, s_t);
+      if (out.kind == ContactOutline::Kind::kNone) continue;
+      const double inradius = 0.5 * std::min(out.width_m, out.height_m);
+      const double depth = inradius - ob.distance(p[k] + t * (p[k + 1] - p[k])).distance_m;
+      if (depth > c.core_penetration_between_m) {
+        c.core_penetration_between_m = depth;
+        c.core_penetration_s_m = s_t;
+      }
+      if (depth > 0.5 * inradius && depth / inradius > worst_ratio) {
+        worst_ratio = depth / inradius;
+        worst_spacing = s[k + 1] - s[k];
+      }
+    }
+    if (worst_ratio > 0.0 && worst.empty()) {
+      // A spacing of half the obstacle's thickness keeps a contact point on it.
+      double thickness = 2.0 * ob.radius_m;
+      if (ob.type == Obstacle::Type::kBox) thickness = 2.0 * ob.half_extents_m.minCoeff();
+      worst = fmt::format(
+          "the rod passes into obstacles[{}] \"{}\" between its contact points near s = {:.6g} m: "
+          "the core of its section (the inscribed circle) is {:.3g} m inside, more than half its "
+          "inradius; the contact points are {:.3g} m apart there, refine the grid (shooting "
+          "steps, FE elements) to a spacing below about {:.3g} m",
+          o, ob.name, c.core_penetration_s_m, c.core_penetration_between_m, worst_spacing,
+          0.5 * thickness);
+    }
+  }
+  if (!worst.empty() && result.converged) {
+    result.converged = false;
+    result.status = "passes_between_contact_points";
+    result.message = worst;
+  }
+}
 
 void check_obstacles(const RodModel& model) {
   if (model.obstacles.empty()) return;

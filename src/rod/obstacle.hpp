@@ -31,6 +31,7 @@
 namespace tcasim::rod {
 
 struct RodModel;
+struct Result;
 
 /// One rigid obstacle (world frame W, SI).
 struct Obstacle {
@@ -113,6 +114,10 @@ struct ContactResult {
   Eigen::Vector3d moment_W_Nm = Eigen::Vector3d::Zero();  ///< about the base point
   std::vector<ContactRegion> regions;  ///< in increasing s; empty when not touched
   double max_penetration_m = 0.0;      ///< max(0, -min g) over the points the solver checks
+  /// Between those points (check_between_contact_points): how deep the section's core (its
+  /// inscribed circle) goes into the obstacle along the centerline polyline [m], >= 0.
+  double core_penetration_between_m = 0.0;
+  double core_penetration_s_m = 0.0;  ///< where (the deepest point's s)
   bool in_contact() const { return !regions.empty(); }
 };
 
@@ -130,6 +135,17 @@ struct ContactSample {
 /// lone sample is a point contact), max_penetration_m.
 ContactResult summarize_contact(const Obstacle& obstacle, const std::vector<ContactSample>& samples,
                                 const Eigen::Vector3d& base_W_m);
+
+/// The solvers hold the rod off the obstacles at their contact points only (grid nodes, FE
+/// nodes): between two of them it can pass into a curved obstacle smaller than their spacing.
+/// Fills each contact's core_penetration_between_m from the result's centerline polyline (the
+/// solver's contact points): per segment the point nearest the obstacle (exact on spheres and
+/// cylinders; none on planes, where a chord lies above its ends), the depth of the section's
+/// inscribed circle below the surface there. Where it exceeds half the inradius (the core half
+/// inside: passed through, not the chord's sagitta on a wrapped obstacle) a converged result
+/// becomes status "passes_between_contact_points" with a message naming the obstacle, the s and
+/// the spacing needed. Results without obstacles or centerline are left alone.
+void check_between_contact_points(const RodModel& model, Result& result);
 
 /// Throws InputError unless the model's obstacles fit its reference configuration: no obstacle
 /// contains the base point (naming obstacles[i] and the base), no section of the stress-free

@@ -182,7 +182,9 @@ nlohmann::json to_json(const Result& result) {
            {"force_N", w.vector(c.force_W_N, field + ".force_N")},
            {"moment_Nm", w.vector(c.moment_W_Nm, field + ".moment_Nm")},
            {"regions", regions},
-           {"max_penetration_m", w.number(c.max_penetration_m, field + ".max_penetration_m")}});
+           {"max_penetration_m", w.number(c.max_penetration_m, field + ".max_penetration_m")},
+           {"core_penetration_between_m",
+            w.number(c.core_penetration_between_m, field + ".core_penetration_between_m")}});
     }
     j["contacts"] = contacts;
     // Static solves are frictionless (docs/scenario-format.md "Obstacles").

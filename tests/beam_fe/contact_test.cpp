@@ -251,6 +251,36 @@ TEST(BeamFeContact, ProppedCantileverOnASphereMatchesTheSmallDeflectionReaction)
   }
 }
 
+// A small sphere under the rod between two nodes: the nodes pass on either side of it, so the
+// contact solve converges without touching it. The result says so (its status), and a mesh
+// whose nodes resolve the sphere holds the rod on it.
+TEST(BeamFeContact, ASphereBetweenTwoNodesIsReportedAndResolvedByRefinement) {
+  const double d = 2e-3, R_s = 4e-3;
+  rod::RodModel m = horizontal_rod(d, 0.0);
+  rod::Obstacle ball;
+  ball.name = "ball";
+  ball.type = rod::Obstacle::Type::kSphere;
+  ball.radius_m = R_s;
+  // Between the nodes at 0.5 and 0.53125 of 16 quadratic elements, 1 mm below the surface.
+  ball.point_W_m = Vector3d(0.515, 0.0, -0.5 * d - 1e-3 - R_s);
+  m.obstacles = {ball};
+  // Free, x = 0.515 would sag 6.6 mm (P x^2 (3 L - x) / (6 B)): into the sphere, not past it
+  // (a rod that passed through a small obstacle entirely is not detected by this check).
+  m.tip_force_W_N = Vector3d(0.0, 0.0, -0.01);
+  const ContactRun coarse = solve_model(m, options(16));
+  ASSERT_TRUE(coarse.summary.converged()) << coarse.summary.message;
+  EXPECT_FALSE(coarse.result.converged);
+  EXPECT_EQ(coarse.result.status, "passes_between_contact_points");
+  EXPECT_NE(coarse.result.message.find("\"ball\""), std::string::npos) << coarse.result.message;
+  EXPECT_GT(coarse.result.contacts[0].core_penetration_between_m, 0.5 * d);
+  // Nodes every 1/512 m: a few of them on the sphere.
+  const ContactRun fine = solve_model(m, options(256));
+  ASSERT_TRUE(fine.summary.converged()) << fine.summary.message;
+  EXPECT_TRUE(fine.result.converged) << fine.result.message;
+  EXPECT_TRUE(fine.result.contacts[0].in_contact());
+  EXPECT_LT(fine.result.contacts[0].core_penetration_between_m, 0.5 * 0.5 * d);
+}
+
 // --- (c) The clamp reaction without obstacles ---------------------------------------------------
 
 TEST(BeamFeContact, BaseReactionBalancesWeightAndTipLoadsWithoutObstacles) {

@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "rod/model.hpp"
+#include "rod/result.hpp"
 #include "rod/scenario.hpp"
 #include "support/input_error.hpp"
 #include "support/rod_models.hpp"
@@ -223,6 +224,42 @@ json rod_with(const json& obstacles) {
   })");
   doc["obstacles"] = obstacles;
   return doc;
+}
+
+// A rod whose centerline samples (its contact points) straddle a small sphere: clear at every
+// sample, but the polyline between two of them runs through the sphere. A converged result is
+// marked as passing between its contact points, naming the obstacle; a sphere the chord only
+// grazes (a wrapped rod's sagitta) is reported as a depth and left converged.
+TEST(BetweenContactPoints, ARodThroughASmallSphereBetweenTwoPointsIsNotConverged) {
+  RodModel m = test_support::circular_rod(1.0, 0.002, 200e9, 0.3, 7850.0);
+  Result r;
+  r.converged = true;
+  r.status = "converged";
+  for (int k = 0; k <= 10; ++k) {
+    r.centerline_s_m.push_back(0.1 * k);
+    r.centerline_p_W_m.emplace_back(0.1 * k, 0.0, 0.0);
+  }
+  m.obstacles = {sphere(Eigen::Vector3d(0.55, 0.0, -0.003), 0.01)};  // nodes 0.5, 0.6: clear
+  r.contacts.resize(1);
+  ASSERT_GT(m.obstacles[0].distance(Eigen::Vector3d(0.5, 0, 0)).distance_m, 0.001);
+  check_between_contact_points(m, r);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.status, "passes_between_contact_points");
+  EXPECT_NE(r.message.find("obstacles[0] \"ball\""), std::string::npos) << r.message;
+  EXPECT_NEAR(r.contacts[0].core_penetration_s_m, 0.55, 1e-12);
+  // Core inscribed circle r = 1 mm: depth = 1 mm - (3 mm - 10 mm) = 8 mm.
+  EXPECT_NEAR(r.contacts[0].core_penetration_between_m, 0.008, 1e-12);
+
+  // Grazing: the core 0.4 mm inside (less than half the 1 mm inradius).
+  Result g = r;
+  g.converged = true;
+  g.status = "converged";
+  g.message.clear();
+  m.obstacles = {sphere(Eigen::Vector3d(0.55, 0.0, -0.0106), 0.01)};
+  check_between_contact_points(m, g);
+  EXPECT_TRUE(g.converged);
+  EXPECT_EQ(g.status, "converged");
+  EXPECT_NEAR(g.contacts[0].core_penetration_between_m, 0.0004, 1e-12);
 }
 
 TEST(ScenarioObstacles, ReadsTheFourShapes) {
