@@ -142,8 +142,8 @@ void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions&
     for (const int n : elements) {
       const xc::DynamicRun& r = fe[k++];
       const xc::TrajectoryDifference d = xc::trajectory_difference(r, shooting);
-      fmt::print(stderr, "  {:>5} {:>8} {:>14.4e} {:>11.3e} {:>9.4f} {:>8.3f} {:>8}{}\n", order,
-                 n, d.max_m, d.max_m / model.length_m, d.at_t_s, r.wall_s, r.steps_done,
+      fmt::print(stderr, "  {:>5} {:>8} {:>14.4e} {:>11.3e} {:>9.4f} {:>8.3f} {:>8}{}\n", order, n,
+                 d.max_m, d.max_m / model.length_m, d.at_t_s, r.wall_s, r.steps_done,
                  r.ok ? "" : "  FAILED: " + r.message);
       all = all && r.ok;
     }
@@ -187,7 +187,8 @@ void add_compare_command(CLI::App& app) {
   study::SimulationOptions& d = flags->dyn;
   const std::vector<CLI::Option*> dynamic_flags = {
       cmd->add_option("--duration-s", d.duration_s, "--dynamic: simulated time T [s] (> 0)"),
-      cmd->add_option("--dt-s", d.dt_s, "--dynamic: time step of both methods [s] (> 0); or --rtol"),
+      cmd->add_option("--dt-s", d.dt_s,
+                      "--dynamic: time step of both methods [s] (> 0); or --rtol"),
       cmd->add_option("--rtol", d.rtol,
                       "--dynamic: adaptive time steps in both methods instead of --dt-s (as "
                       "tcasim simulate --rtol): relative tolerance of the local error per rod "

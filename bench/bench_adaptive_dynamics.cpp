@@ -47,8 +47,8 @@ struct Scenario {
 Scenario scenario(bool release) {
   const std::string dir = std::string(TCASIM_SOURCE_DIR) + "/validation/scenarios/dynamic/";
   Scenario s;
-  s.model = rod::read_scenario(dir + (release ? "steel-cantilever-release.json"
-                                              : "manipulator-voltage-step.json"));
+  s.model = rod::read_scenario(
+      dir + (release ? "steel-cantilever-release.json" : "manipulator-voltage-step.json"));
   s.base.duration_s = release ? 1.0 : 10.0;
   s.base.release_tip_load = release;
   return s;

@@ -137,11 +137,11 @@ DynamicRun run_dynamics(const rod::RodModel& model, DynamicMethod method,
     run.potential_J.push_back(d.potential_energy_J());
   };
   const rod::TrajectoryOutcome o =
-      s.rtol ? method::run_adaptive(
-                   dyn, loads, s.duration_s,
-                   study::adaptive_options(model, adaptive_simulation(method, s)),
-                   [&record](const method::DynamicSolver& d, double) { record(d); })
-             : method::run(dyn, loads, g.steps, g.every, record);
+      s.rtol
+          ? method::run_adaptive(dyn, loads, s.duration_s,
+                                 study::adaptive_options(model, adaptive_simulation(method, s)),
+                                 [&record](const method::DynamicSolver& d, double) { record(d); })
+          : method::run(dyn, loads, g.steps, g.every, record);
   run.ok = o.ok;
   run.steps_done = o.steps_done;
   run.steps_rejected = o.steps_rejected + o.steps_failed;

@@ -25,8 +25,6 @@
 //              |x_S - x_F| <= d_ref + (N_S + N_F) rtol L. Gate on that bound.
 #include "validation/dynamics/adaptive_cases.hpp"
 
-#include "validation/dynamics/tca_cases.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -37,6 +35,7 @@
 
 #include "crosscheck/dynamic.hpp"
 #include "rod/scenario.hpp"
+#include "validation/dynamics/tca_cases.hpp"
 
 namespace tcasim::dynamics_validation {
 
@@ -122,9 +121,8 @@ MethodResult run_method(validation::Gates& g, const rod::RodModel& model, const 
   const std::string tag = fmt::format("adaptive {} {}", c.name, xc::to_string(m));
   const auto rows = static_cast<std::size_t>(std::llround(c.duration_s / c.output_every_s)) + 1;
   auto log = [&](const char* kind, double rtol, double dt, const xc::DynamicRun& r, double e) {
-    csv << fmt::format("{},{},{},{:.3e},{:.6e},{},{},{},{:.4f},{:.6e}\n", c.name,
-                       xc::to_string(m), kind, rtol, dt, r.grid_steps, r.steps_done,
-                       r.steps_rejected, r.wall_s, e);
+    csv << fmt::format("{},{},{},{:.3e},{:.6e},{},{},{},{:.4f},{:.6e}\n", c.name, xc::to_string(m),
+                       kind, rtol, dt, r.grid_steps, r.steps_done, r.steps_rejected, r.wall_s, e);
   };
   // Reference by refinement (see the header).
   if (own_reference) {
@@ -137,9 +135,10 @@ MethodResult run_method(validation::Gates& g, const rod::RodModel& model, const 
     res.reference_error = error_over_L(check, res.reference, L) / kRefinementFactor;
     log("reference", rtol_ref, 0.0, res.reference, res.reference_error);
     log("reference-check", 10.0 * rtol_ref, 0.0, check, error_over_L(check, res.reference, L));
-    fmt::print("  {}: reference rtol {:.0e}: {} steps ({} retried), {:.2f} s, est. error {:.2e} L\n",
-               tag, rtol_ref, res.reference.steps_done, res.reference.steps_rejected,
-               res.reference.wall_s, res.reference_error);
+    fmt::print(
+        "  {}: reference rtol {:.0e}: {} steps ({} retried), {:.2f} s, est. error {:.2e} L\n", tag,
+        rtol_ref, res.reference.steps_done, res.reference.steps_rejected, res.reference.wall_s,
+        res.reference_error);
   } else if (fe_result && fe_result->ok) {
     res.reference = fe_result->reference;
     fmt::print("  {}: no reference of its own (see the case); errors against the FE's\n", tag);
@@ -197,8 +196,8 @@ MethodResult run_method(validation::Gates& g, const rod::RodModel& model, const 
               "no shooting reference on this case (errors against the FE reference, reported)");
     return res;
   }
-  gate_orders(g, tag + ": max tip error / L vs rtol (rate 2/3)", c.rtols, res.errors,
-              kExpectedRate, kRateTolerance, orders);
+  gate_orders(g, tag + ": max tip error / L vs rtol (rate 2/3)", c.rtols, res.errors, kExpectedRate,
+              kRateTolerance, orders);
   g.at_most(tag + ": reference's estimated error / smallest ladder error",
             res.reference_error / res.errors.back(), kReferenceFraction);
   res.ok = true;
@@ -264,15 +263,14 @@ void adaptive_steps(validation::Gates& g, const std::string& out, bool quick) {
   std::ofstream agree(out + "/adaptive_agreement.csv");
   agree << "case,rtol,difference_over_L,reference_difference_over_L,steps_shooting,steps_fe,"
            "bound_over_L\n";
-  const std::filesystem::path dir = std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" /
-                                    "scenarios" / "dynamic";
+  const std::filesystem::path dir =
+      std::filesystem::path(TCASIM_SOURCE_DIR) / "validation" / "scenarios" / "dynamic";
   for (const Case& c : cases) {
     const rod::RodModel model = rod::read_scenario((dir / c.file).string());
     const double L = model.length_m;
     const MethodResult f = run_method(g, model, c, xc::DynamicMethod::kFe, csv, orders, nullptr);
     if (!c.shooting) continue;
-    const MethodResult s =
-        run_method(g, model, c, xc::DynamicMethod::kShooting, csv, orders, &f);
+    const MethodResult s = run_method(g, model, c, xc::DynamicMethod::kShooting, csv, orders, &f);
     if (!s.ok || !f.ok) {
       g.not_run(fmt::format("adaptive {}: |shooting - FE| bound", c.name),
                 "needs both methods' references");
