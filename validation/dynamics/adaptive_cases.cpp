@@ -192,8 +192,8 @@ MethodResult run_method(validation::Gates& g, const rod::RodModel& model, const 
   }
   fmt::print("(* fixed steps at the same error, interpolated)\n");
   if (!own_reference) {
-    g.not_run(tag + ": max tip error / L vs rtol (rate 2/3)",
-              "no shooting reference on this case (errors against the FE reference, reported)");
+    // Declared by the case (no grid for the reference), not a lost case: reported, no gate.
+    fmt::print("    not gated: no shooting reference on this case (errors against the FE's)\n");
     return res;
   }
   gate_orders(g, tag + ": max tip error / L vs rtol (rate 2/3)", c.rtols, res.errors, kExpectedRate,
@@ -272,8 +272,8 @@ void adaptive_steps(validation::Gates& g, const std::string& out, bool quick) {
     if (!c.shooting) continue;
     const MethodResult s = run_method(g, model, c, xc::DynamicMethod::kShooting, csv, orders, &f);
     if (!s.ok || !f.ok) {
-      g.not_run(fmt::format("adaptive {}: |shooting - FE| bound", c.name),
-                "needs both methods' references");
+      // A failed run has failed its gate above; a case without a shooting reference is declared.
+      fmt::print("  {}: |shooting - FE| not gated (needs both methods' references)\n", c.name);
       continue;
     }
     const double d_ref = error_over_L(s.reference, f.reference, L);
