@@ -149,6 +149,7 @@ void BM_ReleaseAdaptive(benchmark::State& state) {
   run_benchmark(state, true, adaptive(1e-4 * static_cast<double>(state.range(1)), true));
 }
 BENCHMARK(BM_ReleaseAdaptive)
+    ->Args({0, 1})
     ->Args({0, 30})
     ->Args({1, 30})
     ->Args({0, 10})

@@ -252,8 +252,12 @@ void adaptive_steps(validation::Gates& g, const std::string& out, bool quick) {
     c.shooting_steps = 400;
     c.fe_elements = 16;
     cases.push_back(c);
+    // The shooting reference at rtol 1e-9 stops at the first switch (t = 0.5 s: the step the
+    // error test asks, 2.7e-5 s, is below the floor 3.1e-5 s of the 400-step grid): the
+    // shooting runs are measured against the FE reference, reported, not gated.
     c.name = "pwm";
     c.file = "manipulator-pwm.json";
+    c.rtol_ref_shooting = 0.0;
     cases.push_back(c);
   }
   std::ofstream csv(out + "/adaptive.csv");
