@@ -82,8 +82,15 @@ void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions&
   const long long n_steps = study::check_simulation_options(f, study::OptionNames::kFlags);
   xc::DynamicSettings s;
   s.duration_s = f.duration_s;
-  s.dt_s = f.dt_s;
-  s.output_dt_s = static_cast<double>(f.output_every) * f.dt_s;
+  if (f.rtol) {
+    // Adaptive: both methods land on the output times k --output-every-s, compared there.
+    s.rtol = f.rtol;
+    s.atol_m = f.atol_m.value_or(0.0);
+    s.output_dt_s = *f.output_every_s;
+  } else {
+    s.dt_s = f.dt_s;
+    s.output_dt_s = static_cast<double>(f.output_every) * f.dt_s;
+  }
   s.release_tip_load = f.release_tip_load;
   // Checked above: a given --steps is >= 1 (DynamicSettings' 0 is its own "recommended").
   if (f.steps) s.steps = static_cast<int>(*f.steps);
@@ -114,19 +121,29 @@ void compare_dynamic(const rod::RodModel& model, const study::SimulationOptions&
   Output out(out_path);
   out.stream() << xc::dynamic_csv(shooting, fe, labels);
   out.commit();
-  fmt::print(stderr, "{}: {} s at dt {} s ({} steps); shooting: {} RK4 steps along s, {:.3f} s{}\n",
-             model.name, f.duration_s, f.dt_s, n_steps, shooting.grid_steps, shooting.wall_s,
-             shooting.ok ? "" : "; FAILED: " + shooting.message);
-  fmt::print(stderr, "  {:>5} {:>8} {:>14} {:>11} {:>9} {:>8}\n", "order", "elements",
-             "max |dtip| [m]", "/ L", "at t [s]", "fe [s]");
+  if (f.rtol) {
+    fmt::print(stderr,
+               "{}: {} s, adaptive steps rtol {} atol {} m, output every {} s ({} rows); "
+               "shooting: {} RK4 steps along s, {} steps ({} retried), {:.3f} s{}\n",
+               model.name, f.duration_s, *f.rtol, s.atol_m, *f.output_every_s, n_steps,
+               shooting.grid_steps, shooting.steps_done, shooting.steps_rejected, shooting.wall_s,
+               shooting.ok ? "" : "; FAILED: " + shooting.message);
+  } else {
+    fmt::print(stderr,
+               "{}: {} s at dt {} s ({} steps); shooting: {} RK4 steps along s, {:.3f} s{}\n",
+               model.name, f.duration_s, f.dt_s, n_steps, shooting.grid_steps, shooting.wall_s,
+               shooting.ok ? "" : "; FAILED: " + shooting.message);
+  }
+  fmt::print(stderr, "  {:>5} {:>8} {:>14} {:>11} {:>9} {:>8} {:>8}\n", "order", "elements",
+             "max |dtip| [m]", "/ L", "at t [s]", "fe [s]", "fe steps");
   bool all = shooting.ok;
   std::size_t k = 0;
   for (const int order : orders) {
     for (const int n : elements) {
       const xc::DynamicRun& r = fe[k++];
       const xc::TrajectoryDifference d = xc::trajectory_difference(r, shooting);
-      fmt::print(stderr, "  {:>5} {:>8} {:>14.4e} {:>11.3e} {:>9.4f} {:>8.3f}{}\n", order, n,
-                 d.max_m, d.max_m / model.length_m, d.at_t_s, r.wall_s,
+      fmt::print(stderr, "  {:>5} {:>8} {:>14.4e} {:>11.3e} {:>9.4f} {:>8.3f} {:>8}{}\n", order, n,
+                 d.max_m, d.max_m / model.length_m, d.at_t_s, r.wall_s, r.steps_done,
                  r.ok ? "" : "  FAILED: " + r.message);
       all = all && r.ok;
     }
@@ -170,7 +187,18 @@ void add_compare_command(CLI::App& app) {
   study::SimulationOptions& d = flags->dyn;
   const std::vector<CLI::Option*> dynamic_flags = {
       cmd->add_option("--duration-s", d.duration_s, "--dynamic: simulated time T [s] (> 0)"),
-      cmd->add_option("--dt-s", d.dt_s, "--dynamic: time step of both methods [s] (> 0)"),
+      cmd->add_option("--dt-s", d.dt_s,
+                      "--dynamic: time step of both methods [s] (> 0); or --rtol"),
+      cmd->add_option("--rtol", d.rtol,
+                      "--dynamic: adaptive time steps in both methods instead of --dt-s (as "
+                      "tcasim simulate --rtol): relative tolerance of the local error per rod "
+                      "length, in (0, 1)"),
+      cmd->add_option("--atol-m", d.atol_m,
+                      "--dynamic with --rtol: absolute tolerance of the local error [m] (>= 0, "
+                      "default 0)"),
+      cmd->add_option("--output-every-s", d.output_every_s,
+                      "--dynamic with --rtol (required): compare every this many seconds, in "
+                      "(0, duration]"),
       cmd->add_option("--steps", d.steps,
                       fmt::format("--dynamic: shooting RK4 steps along s, in [1, {}] (default: "
                                   "enough for the time step)",
@@ -204,10 +232,22 @@ void add_compare_command(CLI::App& app) {
       }
     }
     if (flags->dynamic) {
-      for (const CLI::Option* o : {dynamic_flags[0], dynamic_flags[1]}) {
-        if (o->count() == 0) {
-          throw InputError(o->get_name(), "(missing)", "is required with --dynamic");
-        }
+      const CLI::Option* duration_flag = dynamic_flags[0];
+      const CLI::Option* dt_flag = dynamic_flags[1];
+      const CLI::Option* rtol_flag = dynamic_flags[2];
+      if (duration_flag->count() == 0) {
+        throw InputError("--duration-s", "(missing)", "is required with --dynamic");
+      }
+      // Exactly one time-step mode, as in tcasim simulate; the other rules (--output-every-s
+      // with --rtol, --atol-m and --output-every only with their mode) are
+      // study::check_simulation_options'.
+      if (dt_flag->count() > 0 && rtol_flag->count() > 0) {
+        throw InputError("--dt-s", dt_flag->as<std::string>(),
+                         "cannot be given with --rtol (fixed or adaptive time steps: one of them)");
+      }
+      if (dt_flag->count() == 0 && rtol_flag->count() == 0) {
+        throw InputError("--dt-s", "missing",
+                         "one of --dt-s (fixed time steps) or --rtol (adaptive) is required");
       }
       const std::vector<int> elements = parse_counts(
           elements_flag->count() > 0 ? flags->elements : "32", "--elements", kMaxElements);

@@ -4,7 +4,9 @@ trajectory and energies), dynamics_energy.png (pulse-forced rod: energy, work, d
 the balance residual), dynamics_orders.png (errors against dt and the quasi-static gaps against
 the drive rate, with the observed orders), dynamics_voltage_step.png (full run) and
 dynamics_pwm.png (PWM-driven three-TCA rod: temperatures against the closed form, the tip
-against the static tip at the instantaneous temperatures, the tip path across the axis).
+against the static tip at the instantaneous temperatures, the tip path across the axis) and
+dynamics_adaptive.png (step 9, full run or --adaptive-only: per case the max tip error against
+rtol, and against wall time for adaptive and fixed steps, both methods).
 
 Usage: /usr/bin/python3 scripts/plot_dynamics.py OUT_DIR
 """
@@ -179,13 +181,65 @@ def plot_pwm(out_dir):
     return True
 
 
+def plot_adaptive(out_dir):
+    path = f"{out_dir}/adaptive.csv"
+    if not os.path.exists(path):
+        return False
+    rows = read(path)
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    fig, axes = plt.subplots(2, len(cases), figsize=(4.2 * len(cases), 7), squeeze=False)
+    styles = {"cosserat": ("C0", "shooting"), "fe": ("C1", "FE")}
+    for k, case in enumerate(cases):
+        a, b = axes[0][k], axes[1][k]
+        for method, (color, label) in styles.items():
+            sel = [r for r in rows if r["case"] == case and r["method"] == method]
+            ad = [r for r in sel if r["kind"] == "adaptive"]
+            fx = [r for r in sel if r["kind"] == "fixed"]
+            if ad:
+                a.loglog(column(ad, "rtol"), column(ad, "max_error_over_L"), "o-", color=color,
+                         label=label)
+                b.loglog(column(ad, "wall_s"), column(ad, "max_error_over_L"), "o-", color=color,
+                         label=f"{label} adaptive")
+            if fx:
+                b.loglog(column(fx, "wall_s"), column(fx, "max_error_over_L"), "s--", color=color,
+                         label=f"{label} fixed dt")
+        ad = [r for r in rows if r["case"] == case and r["kind"] == "adaptive"]
+        if ad:
+            r0 = max(column(ad, "rtol"))
+            e0 = max(column(ad, "max_error_over_L"))
+            xs = sorted(set(column(ad, "rtol")))
+            a.loglog(xs, [e0 * (x / r0) ** (2.0 / 3.0) for x in xs], "k:", label="rtol^(2/3)")
+        a.set_title(f"{case}: error vs rtol")
+        a.set_xlabel("rtol")
+        a.set_ylabel("max tip error / L")
+        a.grid(alpha=0.3, which="both")
+        a.legend(fontsize=8)
+        b.set_title(f"{case}: error vs wall time")
+        b.set_xlabel("wall time [s]")
+        b.set_ylabel("max tip error / L")
+        b.grid(alpha=0.3, which="both")
+        b.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{out_dir}/dynamics_adaptive.png", dpi=110)
+    plt.close(fig)
+    return True
+
+
 def main(out_dir):
-    plot_release(out_dir)
-    plot_energy(out_dir)
-    plot_orders(out_dir)
-    extra = ", dynamics_voltage_step.png" if plot_voltage_step(out_dir) else ""
-    extra += ", dynamics_pwm.png" if plot_pwm(out_dir) else ""
-    print(f"wrote {out_dir}/dynamics_release.png, dynamics_energy.png, dynamics_orders.png{extra}")
+    written = []
+    # --adaptive-only writes step 9's files alone.
+    if os.path.exists(f"{out_dir}/release.csv"):
+        plot_release(out_dir)
+        plot_energy(out_dir)
+        plot_orders(out_dir)
+        written += ["dynamics_release.png", "dynamics_energy.png", "dynamics_orders.png"]
+    if plot_voltage_step(out_dir):
+        written.append("dynamics_voltage_step.png")
+    if plot_pwm(out_dir):
+        written.append("dynamics_pwm.png")
+    if plot_adaptive(out_dir):
+        written.append("dynamics_adaptive.png")
+    print(f"wrote in {out_dir}: {', '.join(written)}")
 
 
 if __name__ == "__main__":

@@ -8,9 +8,11 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <variant>
 
 #include "common/error.hpp"
 #include "method/dynamics.hpp"
+#include "study/simulation.hpp"
 
 namespace tcasim::crosscheck {
 
@@ -36,6 +38,7 @@ struct TimeGrid {
 TimeGrid time_grid(const DynamicSettings& s) {
   require(std::isfinite(s.duration_s) && s.duration_s > 0.0, "duration_s", s.duration_s,
           "must be > 0");
+  if (s.rtol) return {};
   require(std::isfinite(s.dt_s) && s.dt_s > 0.0, "dt_s", s.dt_s, "must be > 0");
   require(std::isfinite(s.output_dt_s) && s.output_dt_s >= 0.0, "output_dt_s", s.output_dt_s,
           "must be >= 0");
@@ -60,8 +63,36 @@ beam_fe::DynamicsOptions fe_options(const DynamicSettings& s) {
 
 /// The options of `method` in the settings (the viscosity and tip mass are the scenario's in
 /// both methods).
+/// The adaptive settings as `tcasim simulate --rtol` options of `method` (one policy for the
+/// first step, the breakpoints and the shooting grid: study/simulation.hpp).
+study::SimulationOptions adaptive_simulation(DynamicMethod method, const DynamicSettings& s) {
+  study::SimulationOptions o;
+  o.method = to_string(method);
+  o.duration_s = s.duration_s;
+  o.rtol = s.rtol;
+  o.atol_m = s.atol_m;
+  o.output_every_s = s.output_dt_s;
+  o.release_tip_load = s.release_tip_load;
+  o.max_iterations = s.max_iterations;
+  o.alpha = s.alpha;
+  if (s.steps) o.steps = *s.steps;
+  o.elements = s.elements;
+  o.order = s.order;
+  o.rho_inf = s.rho_inf;
+  return o;
+}
+
 method::DynamicOptions dynamic_options(const rod::RodModel& model, DynamicMethod method,
                                        const DynamicSettings& s) {
+  if (s.rtol) {
+    study::SimulationOptions so = adaptive_simulation(method, s);
+    study::check_simulation_options(so, study::OptionNames::kPython);
+    method::DynamicOptions o = study::dynamic_options(model, so);
+    // The tightened Newton tolerances of the cross-check, as at fixed steps.
+    if (auto* co = std::get_if<cosserat::DynamicsOptions>(&o)) co->tolerance = s.shooting_tolerance;
+    if (auto* fo = std::get_if<beam_fe::DynamicsOptions>(&o)) fo->tolerance = s.fe_tolerance;
+    return o;
+  }
   if (method == DynamicMethod::kFe) return fe_options(s);
   cosserat::DynamicsOptions o;
   o.dt_s = s.dt_s;
@@ -99,14 +130,21 @@ DynamicRun run_dynamics(const rod::RodModel& model, DynamicMethod method,
   const auto t0 = std::chrono::steady_clock::now();
   method::DynamicSolver dyn(model, dynamic_options(model, method, s));
   run.grid_steps = dyn.grid_size();
+  const auto record = [&run](const method::DynamicSolver& d) {
+    run.t_s.push_back(d.time_s());
+    run.tip_W_m.push_back(d.tip_position_W_m());
+    run.kinetic_J.push_back(d.kinetic_energy_J());
+    run.potential_J.push_back(d.potential_energy_J());
+  };
   const rod::TrajectoryOutcome o =
-      method::run(dyn, loads, g.steps, g.every, [&run](const method::DynamicSolver& d) {
-        run.t_s.push_back(d.time_s());
-        run.tip_W_m.push_back(d.tip_position_W_m());
-        run.kinetic_J.push_back(d.kinetic_energy_J());
-        run.potential_J.push_back(d.potential_energy_J());
-      });
+      s.rtol
+          ? method::run_adaptive(dyn, loads, s.duration_s,
+                                 study::adaptive_options(model, adaptive_simulation(method, s)),
+                                 [&record](const method::DynamicSolver& d, double) { record(d); })
+          : method::run(dyn, loads, g.steps, g.every, record);
   run.ok = o.ok;
+  run.steps_done = o.steps_done;
+  run.steps_rejected = o.steps_rejected + o.steps_failed;
   run.message = o.message;
   run.wall_s = seconds_since(t0);
   return run;

@@ -12,6 +12,11 @@
 /// give p* = p(dt/2) + (p(dt/2) - p(dt)) / 3 at every common output time (Richardson, ratio 2,
 /// order 2), a trajectory whose time error is of higher order; the difference of two
 /// extrapolated trajectories is then the spatial and model difference.
+///
+/// Adaptive time steps (DynamicSettings::rtol): both methods run method::run_adaptive with the
+/// settings of `tcasim simulate --rtol` (study::adaptive_options, the shooting grid of
+/// study::dynamic_options) and land on the same output times k output_dt_s, where they are
+/// compared.
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -33,6 +38,10 @@ struct DynamicSettings {
   /// Output interval [s]: the tip is recorded every round(output_dt_s / dt_s) steps (>= 1) and
   /// at t = 0; 0: every step. Runs at different dt compare at the times they share.
   double output_dt_s = 0.0;
+  /// Adaptive time steps instead of dt_s (which is then ignored): the relative tolerance of the
+  /// local error per rod length, in (0, 1); output_dt_s (> 0) is then the output period.
+  std::optional<double> rtol;
+  double atol_m = 0.0;  ///< adaptive: absolute tolerance of the local error [m], >= 0
   /// The scenario's tip load acts at t = 0 only (released at t = 0+: a released cantilever).
   bool release_tip_load = false;
   // Shooting (cosserat::DynamicsOptions).
@@ -59,6 +68,8 @@ struct DynamicRun {
   std::string message;                   ///< why it stopped (empty when ok)
   int grid_steps = 0;                    ///< shooting: RK4 steps along s used; FE: elements
   double wall_s = 0.0;                   ///< wall time of the run [s]
+  long long steps_done = 0;              ///< accepted time steps
+  long long steps_rejected = 0;          ///< adaptive: steps retried (error or Newton failure)
 };
 
 /// Runs one method (DomainError when the method does not support the model, InputError for
