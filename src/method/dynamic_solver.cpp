@@ -248,8 +248,10 @@ rod::TrajectoryOutcome run_adaptive(
           "must be > 0");
   const int p = solver.error_order();
   // The shooting method's grid along s resolves steps down to its min_time_step_s: no step,
-  // first or restart, is smaller (a landing step excepted, which halves at most to it).
-  const double dt_floor = std::max(o.dt_min_s, solver.min_time_step_s());
+  // first or restart, is smaller (a step landing on an output time or a load jump may be, down
+  // to the grid's floor: below it the run ends with a message).
+  const double grid_floor = solver.min_time_step_s();
+  const double dt_floor = std::max(o.dt_min_s, grid_floor);
   const double dt_start = std::max(o.dt_initial_s, dt_floor);
   const std::string floor_text =
       dt_floor > o.dt_min_s
@@ -327,17 +329,20 @@ rod::TrajectoryOutcome run_adaptive(
     const double remaining = target - t;
     // Land on the target: the whole remainder when the step reaches it, half of it when less
     // than two steps remain (no sliver step before the target).
-    const bool landing = remaining <= dt;
+    bool landing = remaining <= dt;
     double h = landing ? remaining : remaining < 2.0 * dt ? 0.5 * remaining : dt;
-    // Not below the floor where the remainder allows: then the whole remainder at once.
-    const bool whole = !landing && h < dt_floor && remaining <= 2.0 * dt_floor;
-    if (whole) h = remaining;
-    const double t_new = landing || whole ? target : t + h;
-    if (h < dt_floor && !landing && !whole) {
+    // Not below the floor where the remainder allows: then the whole remainder at once (a
+    // landing like any other).
+    if (!landing && h < dt_floor && remaining <= 2.0 * dt_floor) {
+      landing = true;
+      h = remaining;
+    }
+    const double t_new = landing ? target : t + h;
+    if (h < dt_floor && !landing) {
       return fail(t_new, "dt-min",
                   fmt::format("the step size {:.3e} s is below {}", h, floor_text));
     }
-    if (h < solver.min_time_step_s()) {
+    if (h < grid_floor) {
       return fail(t_new, "dt-min",
                   fmt::format("the step {:.3e} s to the next output or load jump is below {} "
                               "(or move output times and profile jumps farther apart)",
