@@ -47,6 +47,17 @@ std::vector<double> parse_range(const std::string& text, const std::string& flag
   return inclusive_grid(a, b, step, flag);
 }
 
+void require_one_time_step_mode(bool dt_given, const std::string& dt_text, bool rtol_given) {
+  if (dt_given && rtol_given) {
+    throw InputError("--dt-s", dt_text,
+                     "cannot be given with --rtol (fixed or adaptive time steps: one of them)");
+  }
+  if (!dt_given && !rtol_given) {
+    throw InputError("--dt-s", "missing",
+                     "one of --dt-s (fixed time steps) or --rtol (adaptive) is required");
+  }
+}
+
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag) {
   const std::string rule = "must be three comma-separated finite numbers X,Y,Z";
   const std::vector<std::string> items = split_list(text, ',', flag, rule);

@@ -46,6 +46,10 @@ Shard parse_shard(const std::string& text, const std::string& flag);
 /// "X,Y,Z" -> vector (InputError naming `flag` unless exactly three finite numbers).
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& flag);
 
+/// Exactly one time-step mode of `simulate` and `compare --dynamic`: fixed (--dt-s, given as
+/// `dt_text` when `dt_given`) or adaptive (--rtol); InputError naming --dt-s otherwise.
+void require_one_time_step_mode(bool dt_given, const std::string& dt_text, bool rtol_given);
+
 /// Picks one TCA of a scenario or TCA file (`--tca` id, required when the file has several),
 /// applying the optional material and f12-form overrides (rod::select_tca with the flags'
 /// names; an empty text is an absent flag). Throws InputError naming the flag.

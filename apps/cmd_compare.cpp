@@ -241,14 +241,9 @@ void add_compare_command(CLI::App& app) {
       // Exactly one time-step mode, as in tcasim simulate; the other rules (--output-every-s
       // with --rtol, --atol-m and --output-every only with their mode) are
       // study::check_simulation_options'.
-      if (dt_flag->count() > 0 && rtol_flag->count() > 0) {
-        throw InputError("--dt-s", dt_flag->as<std::string>(),
-                         "cannot be given with --rtol (fixed or adaptive time steps: one of them)");
-      }
-      if (dt_flag->count() == 0 && rtol_flag->count() == 0) {
-        throw InputError("--dt-s", "missing",
-                         "one of --dt-s (fixed time steps) or --rtol (adaptive) is required");
-      }
+      require_one_time_step_mode(dt_flag->count() > 0,
+                                 dt_flag->count() > 0 ? dt_flag->as<std::string>() : "",
+                                 rtol_flag->count() > 0);
       const std::vector<int> elements = parse_counts(
           elements_flag->count() > 0 ? flags->elements : "32", "--elements", kMaxElements);
       const std::vector<int> orders =

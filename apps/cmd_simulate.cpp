@@ -119,14 +119,9 @@ void add_simulate_command(CLI::App& app) {
       if (flag->count() > 0) given.push_back({key, flag->as<std::string>()});
     }
     study::refuse_other_method_options(o.method, given, study::OptionNames::kFlags);
-    if (dt_flag->count() > 0 && rtol_flag->count() > 0) {
-      throw InputError("--dt-s", dt_flag->as<std::string>(),
-                       "cannot be given with --rtol (fixed or adaptive time steps: one of them)");
-    }
-    if (dt_flag->count() == 0 && rtol_flag->count() == 0) {
-      throw InputError("--dt-s", "missing",
-                       "one of --dt-s (fixed time steps) or --rtol (adaptive) is required");
-    }
+    require_one_time_step_mode(dt_flag->count() > 0,
+                               dt_flag->count() > 0 ? dt_flag->as<std::string>() : "",
+                               rtol_flag->count() > 0);
     const bool adaptive = rtol_flag->count() > 0;
     const long long n_steps = study::check_simulation_options(o, study::OptionNames::kFlags);
     const rod::RodModel model = rod::read_scenario(f.scenario);

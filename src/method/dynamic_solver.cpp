@@ -64,6 +64,16 @@ auto with_adaptive_method(Variant& solver, F&& f) {
   return std::visit([&](auto& s) { return f(s.dyn); }, solver);
 }
 
+/// The static state at t = 0 of both time loops; false with the outcome's status and message.
+bool initialize(DynamicSolver& solver, const rod::LoadsAt& loads_at, rod::TrajectoryOutcome& out) {
+  const StepSummary init = solver.initialize(loads_at(0.0));
+  if (init.converged) return true;
+  out.status = init.status;
+  out.message =
+      fmt::format("static initial state did not converge ({}): {}", out.status, init.message);
+  return false;
+}
+
 }  // namespace
 
 struct DynamicSolver::Impl {
@@ -187,13 +197,7 @@ rod::TrajectoryOutcome run(DynamicSolver& solver, const rod::LoadsAt& loads_at, 
                            const std::function<void(const DynamicSolver&)>& on_output,
                            const std::function<void(long long)>& on_step) {
   rod::TrajectoryOutcome out;
-  const StepSummary init = solver.initialize(loads_at(0.0));
-  if (!init.converged) {
-    out.status = init.status;
-    out.message =
-        fmt::format("static initial state did not converge ({}): {}", out.status, init.message);
-    return out;
-  }
+  if (!initialize(solver, loads_at, out)) return out;
   on_output(solver);
   const double dt_s = solver.time_step_s();
   for (long long k = 1; k <= steps; ++k) {
@@ -261,13 +265,7 @@ rod::TrajectoryOutcome run_adaptive(
                 dt_floor)
           : fmt::format("dt_min_s = {:.3e} s", o.dt_min_s);
   rod::TrajectoryOutcome out;
-  const StepSummary init = solver.initialize(loads_at(0.0));
-  if (!init.converged) {
-    out.status = init.status;
-    out.message =
-        fmt::format("static initial state did not converge ({}): {}", out.status, init.message);
-    return out;
-  }
+  if (!initialize(solver, loads_at, out)) return out;
   on_output(solver, 0.0);
 
   // The times the steps land on: outputs (k T_out, and the end) and the profiles' jumps. A time
